@@ -1,0 +1,621 @@
+//! Pass 2: syntax tree → checked [`Model`], with every error located.
+//!
+//! What is checked, and how:
+//! * names: duplicates, unknown names (each use located), `v` outside a law;
+//! * parameter defaults and bounds are numbers; defaults satisfy the bounds;
+//! * the oscillator has mass, damping, stiffness, forcing and frequency, with
+//!   positive mass, stiffness and frequency at the defaults;
+//! * boundaries have distinct velocities at the defaults; at most one carries stick;
+//! * the domains' bands tile the velocity axis: no overlap, no gap, no band
+//!   that spans a boundary;
+//! * every friction law is affine in `v`: its second derivative in `v`,
+//!   taken symbolically with every parameter symbolic, must fold to 0; if
+//!   not, the smallest offending term is named;
+//! * kinetic friction is continuous across every boundary that is not the
+//!   stick boundary: symbolically (the jump folds to 0 with all parameters
+//!   symbolic), else numerically at the defaults and at 16 random
+//!   perturbations of all parameters (a jump that vanishes only for special
+//!   parameter values is reported);
+//! * the static bound is at least the kinetic level on both sides of the stick boundary;
+//! * division by a constant zero (in any instance, scenes included);
+//! * scenes free existing parameters, and their structures name mappings the
+//!   topology allows, each ending where the next begins.
+
+use std::collections::HashMap;
+
+use proc_macro2::Span;
+use quote::ToTokens;
+use syn::spanned::Spanned;
+use syn::Expr;
+
+use crate::diagnostic::Diagnostics;
+use crate::expr::Graph;
+use crate::instance::{lower_instance, Instance, LAW_V};
+use crate::lower::{lower, Scope};
+use crate::model::{Boundary, BoundOp, Derived, Domain, Mapping, Model, Oscillator, Param, Scene};
+use crate::parse::{Item, ModelAst};
+
+/// Check a parsed model. Returns `None` when any error was found.
+pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
+    let errors_before = diags.len();
+    let mut params: Vec<Param> = Vec::new();
+    let mut derived: Vec<Derived> = Vec::new();
+    let mut seen: HashMap<String, Span> = HashMap::new();
+    let mut oscillator = None;
+    let mut boundaries: Vec<Boundary> = Vec::new();
+    let mut domain_asts = Vec::new();
+    let mut scene_asts = Vec::new();
+    let empty = HashMap::new();
+
+    let mut declare = |name: &syn::Ident, diags: &mut Diagnostics| -> bool {
+        let s = name.to_string();
+        if s == "v" {
+            diags.error(name.span(), "`v` is the velocity and cannot be redefined");
+            return false;
+        }
+        if let Some(first) = seen.get(&s) {
+            let l = first.start();
+            diags.error(name.span(), format!("`{s}` is defined twice (first at line {}, column {})", l.line, l.column + 1));
+            return false;
+        }
+        seen.insert(s, name.span());
+        true
+    };
+
+    for item in ast.items {
+        match item {
+            Item::Param(p) => {
+                if !declare(&p.name, diags) {
+                    continue;
+                }
+                let ctx = format!("the default of `{}`", p.name);
+                let default = constant(&p.default, &empty, &ctx, diags);
+                let mut bounds = Vec::new();
+                for (op, e, span) in &p.bounds {
+                    let ctx = format!("a bound of `{}`", p.name);
+                    let b = constant(e, &empty, &ctx, diags);
+                    if let (Some(d), Some(b)) = (default, b) {
+                        if !satisfies(d, *op, b) {
+                            diags.error(*span, format!("the default {} of `{}` violates its bound {} {}", d, p.name, op_str(*op), b));
+                        }
+                        bounds.push((*op, b));
+                    }
+                }
+                params.push(Param {
+                    name: p.name.to_string(),
+                    docs: p.docs,
+                    default: default.unwrap_or(0.0),
+                    bounds,
+                    span: p.name.span(),
+                });
+            }
+            Item::Let(l) => {
+                if declare(&l.name, diags) {
+                    derived.push(Derived { name: l.name.to_string(), docs: l.docs, value: l.value });
+                }
+            }
+            Item::Oscillator(o) => {
+                if oscillator.is_some() {
+                    diags.error(o.span, "the oscillator is declared twice");
+                    continue;
+                }
+                oscillator = Some(check_oscillator(o, diags));
+            }
+            Item::Boundary(b) => {
+                let label = b.label.to_string();
+                let digits: String = label.chars().rev().take_while(|c| c.is_ascii_digit()).collect();
+                let digits: String = digits.chars().rev().collect();
+                let Ok(number) = digits.parse::<u32>() else {
+                    diags.error(b.label.span(), format!("boundary label `{label}` must end in its number, e.g. `Sigma1`"));
+                    continue;
+                };
+                if let Some(other) = boundaries.iter().find(|o| o.number == number) {
+                    diags.error(b.label.span(), format!("boundary number {number} is used twice (`{}` and `{label}`)", other.label));
+                    continue;
+                }
+                if let Some(first) = boundaries.iter().find(|o| o.stick.is_some()) {
+                    if b.stick.is_some() {
+                        diags.error(
+                            b.label.span(),
+                            format!("only one boundary can carry static friction; `{}` already does", first.label),
+                        );
+                        continue;
+                    }
+                }
+                boundaries.push(Boundary {
+                    label,
+                    number,
+                    docs: b.docs,
+                    velocity: b.velocity,
+                    stick: b.stick,
+                    span: b.label.span(),
+                });
+            }
+            Item::Domain(d) => domain_asts.push(d),
+            Item::Scene(s) => scene_asts.push(s),
+        }
+    }
+
+    let Some(oscillator) = oscillator.flatten() else {
+        if diags.len() == errors_before {
+            diags.error(ast.name.span(), "the model has no `oscillator { mass, damping, stiffness, forcing, frequency }`");
+        }
+        return None;
+    };
+    if boundaries.is_empty() {
+        diags.error(ast.name.span(), "the model has no boundary: declare at least one `boundary SigmaN: v = ...;`");
+        return None;
+    }
+
+    // Domains refer to boundaries by label.
+    let by_label: HashMap<String, usize> = boundaries.iter().enumerate().map(|(i, b)| (b.label.clone(), i)).collect();
+    let mut domains: Vec<Domain> = Vec::new();
+    for d in domain_asts {
+        let label = match d.label.base10_parse::<u32>() {
+            Ok(l) if l >= 1 => l,
+            _ => {
+                diags.error(d.label.span(), "a domain label is a positive integer (0 is the stick mapping's)");
+                continue;
+            }
+        };
+        if domains.iter().any(|o| o.label == label) {
+            diags.error(d.label.span(), format!("domain {label} is declared twice"));
+            continue;
+        }
+        let mut resolve = |id: &Option<syn::Ident>| -> Result<Option<usize>, ()> {
+            match id {
+                None => Ok(None),
+                Some(i) => match by_label.get(&i.to_string()) {
+                    Some(&k) => Ok(Some(k)),
+                    None => {
+                        diags.error(i.span(), format!("unknown boundary `{i}`"));
+                        Err(())
+                    }
+                },
+            }
+        };
+        let (Ok(lower_b), Ok(upper_b)) = (resolve(&d.band.lower), resolve(&d.band.upper)) else {
+            continue;
+        };
+        domains.push(Domain { label, docs: d.docs, lower: lower_b, upper: upper_b, law: d.law, span: d.band.span });
+    }
+
+    let mut model = Model {
+        name: ast.name.to_string(),
+        docs: ast.docs,
+        params,
+        derived,
+        oscillator,
+        boundaries,
+        domains,
+        scenes: Vec::new(),
+        mappings: Vec::new(),
+    };
+    if diags.len() > errors_before {
+        return None;
+    }
+
+    // Lower everything once with all parameters symbolic: this reports unknown
+    // names and divisions by zero, and gives the symbolic checks their graph.
+    let all: Vec<usize> = (0..model.params.len()).collect();
+    let symbolic = lower_instance(&model, &all, diags);
+    if diags.len() > errors_before {
+        return None;
+    }
+
+    check_positive(&model, &symbolic, diags);
+    sort_boundaries(&mut model, &symbolic, diags);
+    if diags.len() > errors_before {
+        return None;
+    }
+    check_bands(&mut model, ast.name.span(), diags);
+    if diags.len() > errors_before {
+        return None;
+    }
+    // Boundaries and domains are now sorted: lower again in that order.
+    let symbolic = lower_instance(&model, &all, &mut Diagnostics::new());
+    for (j, dm) in model.domains.iter().enumerate() {
+        check_affine(&symbolic, dm, j, diags);
+    }
+    if diags.len() > errors_before {
+        return None;
+    }
+    check_continuity(&model, &symbolic, diags);
+    check_static_bound(&model, &symbolic, diags);
+
+    model.mappings = Model::topology_mappings(&model.boundaries, &model.domains);
+    model.scenes = scene_asts.into_iter().filter_map(|s| check_scene(&model, s, diags)).collect();
+    for scene in &model.scenes {
+        let mut scratch = Diagnostics::new();
+        lower_instance(&model, &scene.free, &mut scratch);
+        for d in scratch.iter() {
+            diags.error(d.span, format!("with the parameters of scene `{}` fixed: {}", scene.name, d.message));
+        }
+    }
+    if diags.len() > errors_before {
+        return None;
+    }
+    Some(model)
+}
+
+fn op_str(op: BoundOp) -> &'static str {
+    match op {
+        BoundOp::Gt => ">",
+        BoundOp::Ge => ">=",
+        BoundOp::Lt => "<",
+        BoundOp::Le => "<=",
+    }
+}
+
+/// Whether `value OP bound` holds.
+pub fn satisfies(value: f64, op: BoundOp, bound: f64) -> bool {
+    match op {
+        BoundOp::Gt => value > bound,
+        BoundOp::Ge => value >= bound,
+        BoundOp::Lt => value < bound,
+        BoundOp::Le => value <= bound,
+    }
+}
+
+/// Lower an expression that must be a finite number.
+fn constant(e: &Expr, names: &HashMap<String, crate::expr::Id>, ctx: &str, diags: &mut Diagnostics) -> Option<f64> {
+    let mut g = Graph::new();
+    let before = diags.len();
+    let id = lower(&mut g, e, &Scope { names, velocity: None, context: ctx }, diags);
+    if diags.len() > before {
+        return None;
+    }
+    match g.as_const(id) {
+        Some(x) if x.is_finite() => Some(x),
+        Some(x) => {
+            diags.error(e.span(), format!("{ctx} is {x}, not a finite number"));
+            None
+        }
+        None => {
+            diags.error(e.span(), format!("{ctx} must be a number"));
+            None
+        }
+    }
+}
+
+fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<Oscillator> {
+    const KEYS: [&str; 5] = ["mass", "damping", "stiffness", "forcing", "frequency"];
+    let mut found: [Option<Expr>; 5] = Default::default();
+    for (key, value) in o.fields {
+        let k = key.to_string();
+        match KEYS.iter().position(|&x| x == k) {
+            Some(i) if found[i].is_some() => diags.error(key.span(), format!("`{k}` is given twice")),
+            Some(i) => found[i] = Some(value),
+            None => diags.error(
+                key.span(),
+                format!("unknown oscillator field `{k}`; expected mass, damping, stiffness, forcing, frequency"),
+            ),
+        }
+    }
+    let missing: Vec<&str> = KEYS.iter().zip(&found).filter(|(_, f)| f.is_none()).map(|(k, _)| *k).collect();
+    if !missing.is_empty() {
+        diags.error(o.span, format!("the oscillator lacks {}", missing.join(", ")));
+        return None;
+    }
+    let [mass, damping, stiffness, forcing, frequency] = found.map(|f| f.expect("checked above"));
+    Some(Oscillator { mass, damping, stiffness, forcing, frequency })
+}
+
+fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+    let o = &model.oscillator;
+    for (what, id, e) in [
+        ("mass", inst.mass, &o.mass),
+        ("stiffness", inst.stiffness, &o.stiffness),
+        ("forcing frequency", inst.frequency, &o.frequency),
+    ] {
+        let v = inst.at_defaults(model, id);
+        if v.is_nan() || v <= 0.0 {
+            diags.error(e.span(), format!("the {what} `{}` is {v} at the defaults; it must be positive", e.to_token_stream()));
+        }
+    }
+}
+
+/// Sort boundaries by velocity at the defaults, and remap the domains.
+fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) {
+    let vel: Vec<f64> = inst.boundary_velocity.iter().map(|&id| inst.at_defaults(model, id)).collect();
+    let mut order: Vec<usize> = (0..model.boundaries.len()).collect();
+    order.sort_by(|&a, &b| vel[a].total_cmp(&vel[b]));
+    for w in order.windows(2) {
+        if vel[w[0]] == vel[w[1]] {
+            let (a, b) = (&model.boundaries[w[0]], &model.boundaries[w[1]]);
+            diags.error(b.span, format!("`{}` and `{}` have the same velocity {} at the defaults", a.label, b.label, vel[w[0]]));
+        }
+    }
+    for &i in &order {
+        if !vel[i].is_finite() {
+            let b = &model.boundaries[i];
+            diags.error(b.velocity.span(), format!("the velocity of `{}` is {} at the defaults", b.label, vel[i]));
+        }
+    }
+    let mut position = vec![0; order.len()];
+    for (k, &i) in order.iter().enumerate() {
+        position[i] = k;
+    }
+    model.boundaries = order.iter().map(|&i| model.boundaries[i].clone()).collect();
+    for d in &mut model.domains {
+        d.lower = d.lower.map(|i| position[i]);
+        d.upper = d.upper.map(|i| position[i]);
+    }
+}
+
+/// The bands must tile the velocity axis; sorts the domains from low to high.
+fn check_bands(model: &mut Model, model_span: Span, diags: &mut Diagnostics) {
+    let n = model.boundaries.len();
+    // Interval k lies between boundary k-1 and boundary k (k = 0..=n).
+    let mut covered: Vec<Option<usize>> = vec![None; n + 1];
+    let mut ok = true;
+    for (j, d) in model.domains.iter().enumerate() {
+        let label = |k: usize| &model.boundaries[k].label;
+        let interval = match (d.lower, d.upper) {
+            (Some(lo), Some(hi)) if hi <= lo => {
+                diags.error(
+                    d.span,
+                    format!("empty band in domain {}: `{}` is not below `{}`", d.label, label(lo), label(hi)),
+                );
+                ok = false;
+                continue;
+            }
+            (lo, hi) => {
+                let first = lo.map_or(0, |l| l + 1);
+                let last = hi.unwrap_or(n);
+                if last > first {
+                    let inside: Vec<&str> = (first..last).map(|k| label(k).as_str()).collect();
+                    diags.error(
+                        d.span,
+                        format!(
+                            "domain {}'s band contains the boundary {}: a domain lies between two adjacent boundaries",
+                            d.label,
+                            inside.join(", ")
+                        ),
+                    );
+                    ok = false;
+                    continue;
+                }
+                first
+            }
+        };
+        if let Some(other) = covered[interval] {
+            diags.error(
+                d.span,
+                format!("domain {} overlaps domain {}: both cover the same velocity band", d.label, model.domains[other].label),
+            );
+            ok = false;
+        } else {
+            covered[interval] = Some(j);
+        }
+    }
+    if !ok {
+        return;
+    }
+    for (k, c) in covered.iter().enumerate() {
+        if c.is_none() {
+            let band = match k {
+                0 => format!("v < {}", model.boundaries[0].label),
+                k if k == n => format!("v > {}", model.boundaries[n - 1].label),
+                k => format!("{} < v < {}", model.boundaries[k - 1].label, model.boundaries[k].label),
+            };
+            let span = if k < n { model.boundaries[k].span } else { model_span };
+            diags.error(span, format!("gap: no domain covers the band {band}"));
+        }
+    }
+    if covered.iter().all(Option::is_some) {
+        model.domains = covered.iter().map(|c| model.domains[c.expect("all covered")].clone()).collect();
+    }
+}
+
+fn check_affine(inst: &Instance, dm: &Domain, j: usize, diags: &mut Diagnostics) {
+    let mut g = inst.graph.clone();
+    let law = inst.domains[j].law;
+    if is_affine(&mut g, law) {
+        return;
+    }
+    let term = offending_term(&mut g.clone(), &inst.names, &dm.law);
+    diags.error(
+        term.span(),
+        format!(
+            "the friction law of domain {} is not affine in `v`: the term `{}` is nonlinear in `v`; \
+             split the band into affine pieces",
+            dm.label,
+            term.to_token_stream()
+        ),
+    );
+}
+
+fn is_affine(g: &mut Graph, id: crate::expr::Id) -> bool {
+    match g.diff(id, LAW_V).and_then(|d1| g.diff(d1, LAW_V)) {
+        Ok(d2) => g.as_const(d2) == Some(0.0),
+        Err(_) => false,
+    }
+}
+
+/// The smallest subterm of `e` that is not affine in `v`.
+fn offending_term<'e>(g: &mut Graph, names: &HashMap<String, crate::expr::Id>, e: &'e Expr) -> &'e Expr {
+    let v = g.var(LAW_V);
+    let affine = |g: &mut Graph, sub: &Expr| {
+        let id = lower(g, sub, &Scope { names, velocity: Some(v), context: "" }, &mut Diagnostics::new());
+        is_affine(g, id)
+    };
+    let children: Vec<&Expr> = match e {
+        Expr::Binary(b) => vec![&b.left, &b.right],
+        Expr::Unary(u) => vec![&u.expr],
+        Expr::Paren(p) => return offending_term(g, names, &p.expr),
+        Expr::Call(c) => c.args.iter().collect(),
+        _ => vec![],
+    };
+    for c in children {
+        if !affine(g, c) {
+            return offending_term(g, names, c);
+        }
+    }
+    e
+}
+
+/// Deterministic pseudo-random numbers in [-1, 1] (no dependency needed for 16 draws).
+fn perturbations(n: usize, trials: usize) -> Vec<Vec<f64>> {
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    (0..trials)
+        .map(|_| {
+            (0..n)
+                .map(|_| {
+                    state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+    let mut g = inst.graph.clone();
+    let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
+    let trials = perturbations(defaults.len(), 16);
+    for (k, b) in model.boundaries.iter().enumerate() {
+        if b.stick.is_some() {
+            continue;
+        }
+        let (above, below) = model.sides(k);
+        let vk = inst.boundary_velocity[k];
+        let fa = g.substitute(inst.domains[above].law, LAW_V, vk);
+        let fb = g.substitute(inst.domains[below].law, LAW_V, vk);
+        let jump = g.sub(fa, fb);
+        if g.as_const(jump) == Some(0.0) {
+            continue; // symbolically continuous
+        }
+        let (la, lb) = (model.domains[above].label, model.domains[below].label);
+        let at_defaults = g.eval(jump, &defaults, &[]);
+        let scale = 1.0 + g.eval(fa, &defaults, &[]).abs();
+        if at_defaults.abs() > 1e-12 * scale {
+            diags.error(
+                b.span,
+                format!(
+                    "kinetic friction jumps at `{}` (domain {lb} gives {}, domain {la} gives {}), but `{}` is not a stick boundary: \
+                     make the laws meet there or declare `stick BOUND`",
+                    b.label,
+                    g.eval(fb, &defaults, &[]),
+                    g.eval(fa, &defaults, &[]),
+                    b.label
+                ),
+            );
+            continue;
+        }
+        for t in &trials {
+            let p: Vec<f64> = defaults.iter().zip(t).map(|(d, u)| d * (1.0 + 0.3 * u) + 0.1 * u).collect();
+            let jv = g.eval(jump, &p, &[]);
+            let sc = 1.0 + g.eval(fa, &p, &[]).abs();
+            if jv.abs() > 1e-9 * sc {
+                diags.error(
+                    b.span,
+                    format!(
+                        "kinetic friction is continuous at `{}` only for the default parameter values: \
+                         domains {lb} and {la} do not meet there for other values",
+                        b.label
+                    ),
+                );
+                break;
+            }
+        }
+    }
+}
+
+fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+    let Some(k) = model.stick_boundary() else { return };
+    let Some(bound) = inst.static_bound else { return };
+    let b = &model.boundaries[k];
+    let mut g = inst.graph.clone();
+    let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
+    let s = g.eval(bound, &defaults, &[]);
+    let (above, below) = model.sides(k);
+    let vk = inst.boundary_velocity[k];
+    for (j, sign, side) in [(above, 1.0, "above"), (below, -1.0, "below")] {
+        let f = g.substitute(inst.domains[j].law, LAW_V, vk);
+        let level = sign * g.eval(f, &defaults, &[]);
+        if !(s >= level.abs() - 1e-12 * (1.0 + level.abs())) {
+            let e = b.stick.as_ref().expect("stick boundary");
+            diags.error(
+                e.span(),
+                format!(
+                    "the static bound `{}` = {s} is below the kinetic friction level {} {side} `{}` (domain {}): \
+                     static friction must be at least kinetic",
+                    e.to_token_stream(),
+                    level.abs(),
+                    b.label,
+                    model.domains[j].label
+                ),
+            );
+        }
+    }
+}
+
+fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics) -> Option<Scene> {
+    let before = diags.len();
+    let mut free = Vec::new();
+    for name in &s.free {
+        let n = name.to_string();
+        match model.params.iter().position(|p| p.name == n) {
+            Some(i) if free.contains(&i) => diags.error(name.span(), format!("`{n}` is freed twice")),
+            Some(i) => free.push(i),
+            None if model.derived.iter().any(|d| d.name == n) => diags.error(
+                name.span(),
+                format!("`{n}` is a derived quantity; free the parameters it is computed from"),
+            ),
+            None => diags.error(name.span(), format!("unknown parameter `{n}`")),
+        }
+    }
+    free.sort_unstable();
+    let mut structures = Vec::new();
+    let mut texts = Vec::new();
+    for lit in &s.structures {
+        match parse_structure(model, &lit.value()) {
+            Ok(st) => {
+                structures.push(st);
+                texts.push(lit.value());
+            }
+            Err(msg) => diags.error(lit.span(), msg),
+        }
+    }
+    (diags.len() == before).then(|| Scene {
+        name: s.name.to_string(),
+        docs: s.docs,
+        free,
+        structures,
+        structure_text: texts,
+    })
+}
+
+/// Parse `P_{3_31 0_11 3_13 4_33}` or `3_31 0_11 3_13 4_33` into mapping
+/// indices (as written, i.e. the last one is applied first), checking that
+/// each mapping ends on the boundary where the next one starts.
+pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> {
+    let t = text.trim();
+    let inner = t.strip_prefix("P_{").and_then(|r| r.strip_suffix('}')).unwrap_or(t);
+    let mut out = Vec::new();
+    for tok in inner.split_whitespace() {
+        match model.mappings.iter().position(|m| m.name == tok) {
+            Some(i) => out.push(i),
+            None => {
+                let known: Vec<&str> = model.mappings.iter().map(|m| m.name.as_str()).collect();
+                return Err(format!("`{tok}` is not a mapping of model `{}` (it has {})", model.name, known.join(", ")));
+            }
+        }
+    }
+    if out.is_empty() {
+        return Err("an empty mapping structure".into());
+    }
+    // Application order is right to left.
+    let applied: Vec<&Mapping> = out.iter().rev().map(|&i| &model.mappings[i]).collect();
+    for k in 0..applied.len() {
+        let (a, b) = (applied[k], applied[(k + 1) % applied.len()]);
+        if a.to != b.from {
+            return Err(format!(
+                "{} ends on {}, but {} starts on {}",
+                a.name, model.boundaries[a.to].label, b.name, model.boundaries[b.from].label
+            ));
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,100 @@
+//! The stickslip model language and its code generator.
+//!
+//! One pure library shared by the two drivers: stickslip's `build.rs` (model
+//! files under `models/`) and the `stickslip::model!` proc-macro (inline models
+//! or model files of your own crate). The passes, in order:
+//!
+//! 1. [`parse`] — tokens → syntax tree (`syn`), collecting every syntax error;
+//! 2. [`check`] — syntax tree → checked [`model::Model`], every error located;
+//! 3. [`instance`] — a model with some parameters free → expression graph
+//!    ([`lower`] turns each model expression into [`expr`] nodes);
+//! 4. [`equations`] — the flows, mapping residuals, vector fields and force
+//!    criteria as graph nodes; exact derivatives by [`expr::Graph::diff`];
+//! 5. [`emit`] — straight-line Rust, formatted with `prettyplease`.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod check;
+pub mod diagnostic;
+pub mod emit;
+pub mod equations;
+#[allow(missing_docs)]
+pub mod expr;
+pub mod instance;
+pub mod lower;
+#[allow(missing_docs)]
+pub mod model;
+#[allow(missing_docs)]
+pub mod parse;
+
+use std::path::Path;
+use std::str::FromStr;
+
+use proc_macro2::TokenStream;
+
+pub use diagnostic::{Diagnostic, Diagnostics};
+pub use emit::Options;
+pub use model::Model;
+
+/// Parse and check a model from tokens.
+pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
+    let mut diags = Diagnostics::new();
+    let ast = parse::parse_model(tokens, &mut diags);
+    if !diags.is_empty() {
+        return Err(diags);
+    }
+    let Some(ast) = ast else { return Err(diags) };
+    match check::check(ast, &mut diags) {
+        Some(m) if diags.is_empty() => Ok(m),
+        _ => Err(diags),
+    }
+}
+
+/// Generate the Rust module body for the model in `tokens`.
+pub fn generate(tokens: TokenStream, options: &Options) -> Result<String, Diagnostics> {
+    let model = model_from_tokens(tokens)?;
+    let mut diags = Diagnostics::new();
+    match emit::emit(&model, options, &mut diags) {
+        Some(code) if diags.is_empty() => Ok(code),
+        _ => Err(diags),
+    }
+}
+
+/// Tokenize model source text. Outside a proc-macro (build scripts, tests)
+/// spans carry line and column; inside one, call
+/// `proc_macro2::fallback::force()` first to get them.
+pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
+    TokenStream::from_str(source).map_err(|e| {
+        let mut d = Diagnostics::new();
+        d.error(e.span(), format!("cannot tokenize the model: {e}"));
+        d
+    })
+}
+
+/// A generated model read from a file.
+#[derive(Clone, Debug)]
+pub struct GeneratedFile {
+    /// The model's name (`model NAME { .. }`).
+    pub name: String,
+    /// The formatted module body.
+    pub code: String,
+}
+
+/// Read, check and generate a model file. On failure the error is the
+/// rendered report: `file:line:col`, the source line and a caret per error.
+pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
+    let source = std::fs::read_to_string(path).map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
+    generate_source(&source, origin)
+}
+
+/// Like [`generate_file`], from source text; `origin` names the file in messages.
+pub fn generate_source(source: &str, origin: &str) -> Result<GeneratedFile, String> {
+    let tokens = tokenize(source).map_err(|d| d.render(origin, source))?;
+    let model = model_from_tokens(tokens).map_err(|d| d.render(origin, source))?;
+    let mut diags = Diagnostics::new();
+    let code = emit::emit(&model, &Options { origin: origin.to_string() }, &mut diags);
+    match code {
+        Some(code) if diags.is_empty() => Ok(GeneratedFile { name: model.name, code }),
+        _ => Err(diags.render(origin, source)),
+    }
+}

@@ -1,0 +1,189 @@
+//! The checked model: what the model file means, independent of its syntax.
+//!
+//! Produced by [`crate::check`]; consumed by [`crate::lower`] (expressions per
+//! instance) and [`crate::emit`]. Boundaries are stored from the lowest
+//! velocity to the highest, domains from the lowest band to the highest.
+
+use proc_macro2::Span;
+use syn::Expr;
+
+pub use crate::parse::BoundOp;
+
+/// A named parameter with its default value.
+#[derive(Clone, Debug)]
+pub struct Param {
+    pub name: String,
+    pub docs: Vec<String>,
+    pub default: f64,
+    /// Bounds a run-time value must satisfy (besides being finite).
+    pub bounds: Vec<(BoundOp, f64)>,
+    pub span: Span,
+}
+
+/// A derived quantity, `let NAME = EXPR;`.
+#[derive(Clone, Debug)]
+pub struct Derived {
+    pub name: String,
+    pub docs: Vec<String>,
+    pub value: Expr,
+}
+
+/// The oscillator's linear part: `x'' + 2 damping x' + stiffness x = forcing cos(frequency t) - f(x')`.
+#[derive(Clone, Debug)]
+pub struct Oscillator {
+    pub mass: Expr,
+    pub damping: Expr,
+    pub stiffness: Expr,
+    pub forcing: Expr,
+    pub frequency: Expr,
+}
+
+/// A velocity boundary `v = V_k` between two domains.
+#[derive(Clone, Debug)]
+pub struct Boundary {
+    /// The label as written (`Sigma1`).
+    pub label: String,
+    /// The number in the label (`1`), used in mapping names.
+    pub number: u32,
+    pub docs: Vec<String>,
+    pub velocity: Expr,
+    /// The static friction bound per unit mass, for the stick boundary.
+    pub stick: Option<Expr>,
+    pub span: Span,
+}
+
+/// A domain: a velocity band with an affine kinetic friction law `f(v)`.
+#[derive(Clone, Debug)]
+pub struct Domain {
+    /// The label as written (`1`).
+    pub label: u32,
+    pub docs: Vec<String>,
+    /// Index into [`Model::boundaries`] of the lower edge (`None`: unbounded).
+    pub lower: Option<usize>,
+    /// Index into [`Model::boundaries`] of the upper edge (`None`: unbounded).
+    pub upper: Option<usize>,
+    /// Friction per unit mass as a function of `v`.
+    pub law: Expr,
+    pub span: Span,
+}
+
+/// Kind of a mapping (SPEC §5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MappingKind {
+    /// Leaves a boundary and returns to it (Eq. 34).
+    Local,
+    /// Crosses a domain from one boundary to the other (Eq. 35).
+    Global,
+    /// Sticks on the stick boundary (Eq. 36).
+    Stick,
+}
+
+/// A mapping `P_{j βα}`: in domain `j`, from boundary `α` to boundary `β`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Mapping {
+    /// `j_βα`, e.g. `3_31`; `0_11` for the stick mapping.
+    pub name: String,
+    /// Index into [`Model::domains`]; `None` for the stick mapping.
+    pub domain: Option<usize>,
+    /// Boundary index it starts on (α).
+    pub from: usize,
+    /// Boundary index it ends on (β).
+    pub to: usize,
+    pub kind: MappingKind,
+}
+
+/// A scene: which parameters stay free, which structures are studied.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub name: String,
+    pub docs: Vec<String>,
+    /// Indices into [`Model::params`].
+    pub free: Vec<usize>,
+    /// Each structure as mapping indices in the order written (applied right to left).
+    pub structures: Vec<Vec<usize>>,
+    /// The structures as written.
+    pub structure_text: Vec<String>,
+}
+
+/// A checked model.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub name: String,
+    pub docs: Vec<String>,
+    pub params: Vec<Param>,
+    pub derived: Vec<Derived>,
+    pub oscillator: Oscillator,
+    /// From the lowest velocity to the highest.
+    pub boundaries: Vec<Boundary>,
+    /// From the lowest band to the highest.
+    pub domains: Vec<Domain>,
+    pub scenes: Vec<Scene>,
+    /// Every mapping the topology allows.
+    pub mappings: Vec<Mapping>,
+}
+
+impl Model {
+    /// The index of the stick boundary, if any.
+    pub fn stick_boundary(&self) -> Option<usize> {
+        self.boundaries.iter().position(|b| b.stick.is_some())
+    }
+
+    /// The domain just above boundary `k` and just below it.
+    pub fn sides(&self, k: usize) -> (usize, usize) {
+        // Domains are sorted; domain i lies between boundaries i-1 and i.
+        (k + 1, k)
+    }
+
+    /// Mapping name for domain label `j` from boundary number `a` to `b`:
+    /// `j_ba` when both numbers have one digit, `j_b_a` otherwise.
+    pub fn mapping_name(j: u32, to: u32, from: u32) -> String {
+        if to < 10 && from < 10 {
+            format!("{j}_{to}{from}")
+        } else {
+            format!("{j}_{to}_{from}")
+        }
+    }
+
+    /// Every mapping the topology allows: per domain, the local mappings on
+    /// each of its edges and the global mappings across it; the stick mapping
+    /// on the stick boundary.
+    pub fn topology_mappings(boundaries: &[Boundary], domains: &[Domain]) -> Vec<Mapping> {
+        let mut out = Vec::new();
+        let mut order: Vec<usize> = (0..domains.len()).collect();
+        order.sort_by_key(|&i| domains[i].label);
+        for i in order {
+            let d = &domains[i];
+            let num = |k: usize| boundaries[k].number;
+            let mut push = |from: usize, to: usize, kind| {
+                out.push(Mapping {
+                    name: Self::mapping_name(d.label, num(to), num(from)),
+                    domain: Some(i),
+                    from,
+                    to,
+                    kind,
+                })
+            };
+            if let Some(lo) = d.lower {
+                push(lo, lo, MappingKind::Local);
+            }
+            if let Some(hi) = d.upper {
+                push(hi, hi, MappingKind::Local);
+            }
+            if let (Some(lo), Some(hi)) = (d.lower, d.upper) {
+                push(lo, hi, MappingKind::Global);
+                push(hi, lo, MappingKind::Global);
+            }
+        }
+        if let Some(s) = boundaries.iter().position(|b| b.stick.is_some()) {
+            let n = boundaries[s].number;
+            out.push(Mapping {
+                name: Self::mapping_name(0, n, n),
+                domain: None,
+                from: s,
+                to: s,
+                kind: MappingKind::Stick,
+            });
+        }
+        out
+    }
+}

@@ -1,0 +1,348 @@
+//! Pass 1: tokens → syntax tree of a model file (`.ssm`).
+//!
+//! The language is made of Rust tokens, so it is parsed with `syn`; every
+//! node keeps the span it came from. A syntax error in one item does not stop
+//! the parse: the parser skips to the end of that item and goes on, so all
+//! the file's errors are reported at once.
+
+use proc_macro2::{Span, TokenStream, TokenTree};
+use syn::parse::ParseStream;
+use syn::{braced, Attribute, Expr, Ident, LitInt, LitStr, Token};
+
+use crate::diagnostic::Diagnostics;
+
+mod kw {
+    syn::custom_keyword!(model);
+    syn::custom_keyword!(param);
+    syn::custom_keyword!(oscillator);
+    syn::custom_keyword!(boundary);
+    syn::custom_keyword!(domain);
+    syn::custom_keyword!(scene);
+    syn::custom_keyword!(stick);
+    syn::custom_keyword!(v);
+    syn::custom_keyword!(free);
+    syn::custom_keyword!(structures);
+}
+
+/// A whole model file.
+#[derive(Debug)]
+pub struct ModelAst {
+    /// Doc comments on the model.
+    pub docs: Vec<String>,
+    /// `model NAME`.
+    pub name: Ident,
+    /// Items in source order.
+    pub items: Vec<Item>,
+}
+
+/// One item of the model body.
+#[derive(Debug)]
+pub enum Item {
+    /// `param NAME = VALUE [, > LO] [, < HI];`
+    Param(ParamAst),
+    /// `let NAME = EXPR;`
+    Let(LetAst),
+    /// `oscillator { key: EXPR, ... }`
+    Oscillator(OscillatorAst),
+    /// `boundary LABEL: v = EXPR [, stick EXPR];`
+    Boundary(BoundaryAst),
+    /// `domain N: BAND => EXPR;`
+    Domain(DomainAst),
+    /// `scene NAME { free: ...; structures: ...; }`
+    Scene(SceneAst),
+}
+
+/// A comparison bound on a parameter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BoundOp {
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+}
+
+/// `param NAME = VALUE, bounds...;`
+#[derive(Debug)]
+pub struct ParamAst {
+    pub docs: Vec<String>,
+    pub name: Ident,
+    pub default: Expr,
+    pub bounds: Vec<(BoundOp, Expr, Span)>,
+}
+
+/// `let NAME = EXPR;`
+#[derive(Debug)]
+pub struct LetAst {
+    pub docs: Vec<String>,
+    pub name: Ident,
+    pub value: Expr,
+}
+
+/// `oscillator { mass: .., damping: .., stiffness: .., forcing: .., frequency: .. }`
+#[derive(Debug)]
+pub struct OscillatorAst {
+    pub span: Span,
+    pub fields: Vec<(Ident, Expr)>,
+}
+
+/// `boundary LABEL: v = EXPR [, stick EXPR];`
+#[derive(Debug)]
+pub struct BoundaryAst {
+    pub docs: Vec<String>,
+    pub label: Ident,
+    pub velocity: Expr,
+    pub stick: Option<Expr>,
+}
+
+/// The velocity band of a domain, by boundary labels.
+#[derive(Debug)]
+pub struct BandAst {
+    /// Lower boundary (`None`: unbounded below).
+    pub lower: Option<Ident>,
+    /// Upper boundary (`None`: unbounded above).
+    pub upper: Option<Ident>,
+    pub span: Span,
+}
+
+/// `domain N: BAND => LAW;`
+#[derive(Debug)]
+pub struct DomainAst {
+    pub docs: Vec<String>,
+    pub label: LitInt,
+    pub band: BandAst,
+    pub law: Expr,
+}
+
+/// `scene NAME { free: A, B; structures: "..", ".."; }`
+#[derive(Debug)]
+pub struct SceneAst {
+    pub docs: Vec<String>,
+    pub name: Ident,
+    pub free: Vec<Ident>,
+    pub structures: Vec<LitStr>,
+}
+
+fn docs_of(attrs: &[Attribute], diags: &mut Diagnostics) -> Vec<String> {
+    let mut out = Vec::new();
+    for attr in attrs {
+        if attr.path().is_ident("doc") {
+            if let syn::Meta::NameValue(nv) = &attr.meta {
+                if let Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) = &nv.value {
+                    out.push(s.value().trim().to_string());
+                    continue;
+                }
+            }
+        }
+        diags.error(attr.pound_token.span, "only doc comments (`///`) may annotate a model item");
+    }
+    out
+}
+
+/// Parse a model from tokens, collecting every syntax error.
+pub fn parse_model(tokens: TokenStream, diags: &mut Diagnostics) -> Option<ModelAst> {
+    let parser = |input: ParseStream| parse_model_stream(input, diags);
+    match syn::parse::Parser::parse2(parser, tokens) {
+        Ok(m) => m,
+        Err(e) => {
+            diags.push_syn(e);
+            None
+        }
+    }
+}
+
+fn parse_model_stream(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option<ModelAst>> {
+    let mut inner = input.call(Attribute::parse_inner)?;
+    inner.extend(input.call(Attribute::parse_outer)?);
+    let docs = docs_of(&inner, diags);
+    input.parse::<kw::model>().map_err(|e| {
+        syn::Error::new(e.span(), "expected `model NAME { ... }` (a model file holds one model)")
+    })?;
+    let name: Ident = input.parse()?;
+    let body;
+    braced!(body in input);
+    let mut items = Vec::new();
+    while !body.is_empty() {
+        match parse_item(&body, diags) {
+            Ok(item) => items.push(item),
+            Err(e) => {
+                diags.push_syn(e);
+                skip_item(&body);
+            }
+        }
+    }
+    if !input.is_empty() {
+        return Err(input.error("unexpected tokens after the model's closing brace"));
+    }
+    Ok(Some(ModelAst { docs, name, items }))
+}
+
+/// Error recovery: drop tokens up to and including the next `;` or braced
+/// group at this level, so the next item can be parsed.
+fn skip_item(input: ParseStream) {
+    let _ = input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tt, next)) = rest.token_tree() {
+            rest = next;
+            match tt {
+                TokenTree::Punct(p) if p.as_char() == ';' => break,
+                TokenTree::Group(g) if g.delimiter() == proc_macro2::Delimiter::Brace => break,
+                _ => {}
+            }
+        }
+        Ok(((), rest))
+    });
+}
+
+fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> {
+    let attrs = input.call(Attribute::parse_outer)?;
+    let docs = docs_of(&attrs, diags);
+    let la = input.lookahead1();
+    if la.peek(kw::param) {
+        input.parse::<kw::param>()?;
+        let name: Ident = input.parse()?;
+        input.parse::<Token![=]>()?;
+        let default: Expr = input.parse()?;
+        let mut bounds = Vec::new();
+        while input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+            let span = input.span();
+            let op = if input.peek(Token![>=]) {
+                input.parse::<Token![>=]>()?;
+                BoundOp::Ge
+            } else if input.peek(Token![<=]) {
+                input.parse::<Token![<=]>()?;
+                BoundOp::Le
+            } else if input.peek(Token![>]) {
+                input.parse::<Token![>]>()?;
+                BoundOp::Gt
+            } else if input.peek(Token![<]) {
+                input.parse::<Token![<]>()?;
+                BoundOp::Lt
+            } else {
+                return Err(input.error("expected a bound: `> value`, `>= value`, `< value` or `<= value`"));
+            };
+            let value: Expr = input.parse()?;
+            bounds.push((op, value, span));
+        }
+        input.parse::<Token![;]>()?;
+        Ok(Item::Param(ParamAst { docs, name, default, bounds }))
+    } else if la.peek(Token![let]) {
+        input.parse::<Token![let]>()?;
+        let name: Ident = input.parse()?;
+        input.parse::<Token![=]>()?;
+        let value: Expr = input.parse()?;
+        input.parse::<Token![;]>()?;
+        Ok(Item::Let(LetAst { docs, name, value }))
+    } else if la.peek(kw::oscillator) {
+        let kw: kw::oscillator = input.parse()?;
+        let body;
+        braced!(body in input);
+        let mut fields = Vec::new();
+        while !body.is_empty() {
+            let key: Ident = body.parse()?;
+            body.parse::<Token![:]>()?;
+            let value: Expr = body.parse()?;
+            fields.push((key, value));
+            if body.is_empty() {
+                break;
+            }
+            body.parse::<Token![,]>()?;
+        }
+        Ok(Item::Oscillator(OscillatorAst { span: kw.span, fields }))
+    } else if la.peek(kw::boundary) {
+        input.parse::<kw::boundary>()?;
+        let label: Ident = input.parse()?;
+        input.parse::<Token![:]>()?;
+        input.parse::<kw::v>()?;
+        input.parse::<Token![=]>()?;
+        let velocity: Expr = input.parse()?;
+        let mut stick = None;
+        if input.peek(Token![,]) {
+            input.parse::<Token![,]>()?;
+            input.parse::<kw::stick>().map_err(|e| {
+                syn::Error::new(e.span(), "expected `stick BOUND` (the static friction bound per unit mass)")
+            })?;
+            stick = Some(input.parse::<Expr>()?);
+        }
+        input.parse::<Token![;]>()?;
+        Ok(Item::Boundary(BoundaryAst { docs, label, velocity, stick }))
+    } else if la.peek(kw::domain) {
+        input.parse::<kw::domain>()?;
+        let label: LitInt = input.parse()?;
+        input.parse::<Token![:]>()?;
+        let band = parse_band(input)?;
+        input.parse::<Token![=>]>()?;
+        let law: Expr = input.parse()?;
+        input.parse::<Token![;]>()?;
+        Ok(Item::Domain(DomainAst { docs, label, band, law }))
+    } else if la.peek(kw::scene) {
+        input.parse::<kw::scene>()?;
+        let name: Ident = input.parse()?;
+        let body;
+        braced!(body in input);
+        let mut free = Vec::new();
+        let mut structures = Vec::new();
+        while !body.is_empty() {
+            if body.peek(kw::free) {
+                body.parse::<kw::free>()?;
+                body.parse::<Token![:]>()?;
+                loop {
+                    free.push(body.parse::<Ident>()?);
+                    if !body.peek(Token![,]) {
+                        break;
+                    }
+                    body.parse::<Token![,]>()?;
+                }
+            } else if body.peek(kw::structures) {
+                body.parse::<kw::structures>()?;
+                body.parse::<Token![:]>()?;
+                loop {
+                    structures.push(body.parse::<LitStr>()?);
+                    if !body.peek(Token![,]) {
+                        break;
+                    }
+                    body.parse::<Token![,]>()?;
+                }
+            } else {
+                return Err(body.error("expected `free: NAMES;` or `structures: \"..\", ..;` in a scene"));
+            }
+            body.parse::<Token![;]>()?;
+        }
+        Ok(Item::Scene(SceneAst { docs, name, free, structures }))
+    } else {
+        Err(la.error())
+    }
+}
+
+/// `v > B`, `A < v < B` or `v < A`.
+fn parse_band(input: ParseStream) -> syn::Result<BandAst> {
+    let span = input.span();
+    let expected = "expected a velocity band: `v > SigmaA`, `SigmaA < v < SigmaB` or `v < SigmaA`";
+    if input.peek(kw::v) {
+        input.parse::<kw::v>()?;
+        if input.peek(Token![>]) {
+            input.parse::<Token![>]>()?;
+            let lower: Ident = input.parse()?;
+            Ok(BandAst { lower: Some(lower), upper: None, span })
+        } else if input.peek(Token![<]) {
+            input.parse::<Token![<]>()?;
+            let upper: Ident = input.parse()?;
+            Ok(BandAst { lower: None, upper: Some(upper), span })
+        } else {
+            Err(input.error(expected))
+        }
+    } else if input.peek(Ident) {
+        let lower: Ident = input.parse()?;
+        input.parse::<Token![<]>().map_err(|e| syn::Error::new(e.span(), expected))?;
+        input.parse::<kw::v>().map_err(|e| syn::Error::new(e.span(), expected))?;
+        input.parse::<Token![<]>().map_err(|e| syn::Error::new(e.span(), expected))?;
+        let upper: Ident = input.parse()?;
+        Ok(BandAst { lower: Some(lower), upper: Some(upper), span })
+    } else {
+        Err(input.error(expected))
+    }
+}

@@ -1,0 +1,1 @@
+//! `stickslip::model!`: a thin proc-macro over `stickslip-codegen`.
