@@ -32,7 +32,7 @@ use crate::diagnostic::Diagnostics;
 use crate::expr::Graph;
 use crate::instance::{lower_instance, Instance, LAW_V};
 use crate::lower::{lower, Scope};
-use crate::model::{Boundary, BoundOp, Derived, Domain, Mapping, Model, Oscillator, Param, Scene};
+use crate::model::{BoundOp, Boundary, Derived, Domain, Mapping, Model, Oscillator, Param, Scene};
 use crate::parse::{Item, ModelAst};
 
 /// Check a parsed model. Returns `None` when any error was found.
@@ -55,7 +55,14 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         }
         if let Some(first) = seen.get(&s) {
             let l = first.start();
-            diags.error(name.span(), format!("`{s}` is defined twice (first at line {}, column {})", l.line, l.column + 1));
+            diags.error(
+                name.span(),
+                format!(
+                    "`{s}` is defined twice (first at line {}, column {})",
+                    l.line,
+                    l.column + 1
+                ),
+            );
             return false;
         }
         seen.insert(s, name.span());
@@ -76,7 +83,16 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                     let b = constant(e, &empty, &ctx, diags);
                     if let (Some(d), Some(b)) = (default, b) {
                         if !satisfies(d, *op, b) {
-                            diags.error(*span, format!("the default {} of `{}` violates its bound {} {}", d, p.name, op_str(*op), b));
+                            diags.error(
+                                *span,
+                                format!(
+                                    "the default {} of `{}` violates its bound {} {}",
+                                    d,
+                                    p.name,
+                                    op_str(*op),
+                                    b
+                                ),
+                            );
                         }
                         bounds.push((*op, b));
                     }
@@ -91,7 +107,11 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
             }
             Item::Let(l) => {
                 if declare(&l.name, diags) {
-                    derived.push(Derived { name: l.name.to_string(), docs: l.docs, value: l.value });
+                    derived.push(Derived {
+                        name: l.name.to_string(),
+                        docs: l.docs,
+                        value: l.value,
+                    });
                 }
             }
             Item::Oscillator(o) => {
@@ -103,21 +123,37 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
             }
             Item::Boundary(b) => {
                 let label = b.label.to_string();
-                let digits: String = label.chars().rev().take_while(|c| c.is_ascii_digit()).collect();
+                let digits: String = label
+                    .chars()
+                    .rev()
+                    .take_while(|c| c.is_ascii_digit())
+                    .collect();
                 let digits: String = digits.chars().rev().collect();
                 let Ok(number) = digits.parse::<u32>() else {
-                    diags.error(b.label.span(), format!("boundary label `{label}` must end in its number, e.g. `Sigma1`"));
+                    diags.error(
+                        b.label.span(),
+                        format!("boundary label `{label}` must end in its number, e.g. `Sigma1`"),
+                    );
                     continue;
                 };
                 if let Some(other) = boundaries.iter().find(|o| o.number == number) {
-                    diags.error(b.label.span(), format!("boundary number {number} is used twice (`{}` and `{label}`)", other.label));
+                    diags.error(
+                        b.label.span(),
+                        format!(
+                            "boundary number {number} is used twice (`{}` and `{label}`)",
+                            other.label
+                        ),
+                    );
                     continue;
                 }
                 if let Some(first) = boundaries.iter().find(|o| o.stick.is_some()) {
                     if b.stick.is_some() {
                         diags.error(
                             b.label.span(),
-                            format!("only one boundary can carry static friction; `{}` already does", first.label),
+                            format!(
+                                "only one boundary can carry static friction; `{}` already does",
+                                first.label
+                            ),
                         );
                         continue;
                     }
@@ -138,23 +174,36 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
 
     let Some(oscillator) = oscillator.flatten() else {
         if diags.len() == errors_before {
-            diags.error(ast.name.span(), "the model has no `oscillator { mass, damping, stiffness, forcing, frequency }`");
+            diags.error(
+                ast.name.span(),
+                "the model has no `oscillator { mass, damping, stiffness, forcing, frequency }`",
+            );
         }
         return None;
     };
     if boundaries.is_empty() {
-        diags.error(ast.name.span(), "the model has no boundary: declare at least one `boundary SigmaN: v = ...;`");
+        diags.error(
+            ast.name.span(),
+            "the model has no boundary: declare at least one `boundary SigmaN: v = ...;`",
+        );
         return None;
     }
 
     // Domains refer to boundaries by label.
-    let by_label: HashMap<String, usize> = boundaries.iter().enumerate().map(|(i, b)| (b.label.clone(), i)).collect();
+    let by_label: HashMap<String, usize> = boundaries
+        .iter()
+        .enumerate()
+        .map(|(i, b)| (b.label.clone(), i))
+        .collect();
     let mut domains: Vec<Domain> = Vec::new();
     for d in domain_asts {
         let label = match d.label.base10_parse::<u32>() {
             Ok(l) if l >= 1 => l,
             _ => {
-                diags.error(d.label.span(), "a domain label is a positive integer (0 is the stick mapping's)");
+                diags.error(
+                    d.label.span(),
+                    "a domain label is a positive integer (0 is the stick mapping's)",
+                );
                 continue;
             }
         };
@@ -177,7 +226,14 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         let (Ok(lower_b), Ok(upper_b)) = (resolve(&d.band.lower), resolve(&d.band.upper)) else {
             continue;
         };
-        domains.push(Domain { label, docs: d.docs, lower: lower_b, upper: upper_b, law: d.law, span: d.band.span });
+        domains.push(Domain {
+            label,
+            docs: d.docs,
+            lower: lower_b,
+            upper: upper_b,
+            law: d.law,
+            span: d.band.span,
+        });
     }
 
     let mut model = Model {
@@ -224,12 +280,21 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
     check_static_bound(&model, &symbolic, diags);
 
     model.mappings = Model::topology_mappings(&model.boundaries, &model.domains);
-    model.scenes = scene_asts.into_iter().filter_map(|s| check_scene(&model, s, diags)).collect();
+    model.scenes = scene_asts
+        .into_iter()
+        .filter_map(|s| check_scene(&model, s, diags))
+        .collect();
     for scene in &model.scenes {
         let mut scratch = Diagnostics::new();
         lower_instance(&model, &scene.free, &mut scratch);
         for d in scratch.iter() {
-            diags.error(d.span, format!("with the parameters of scene `{}` fixed: {}", scene.name, d.message));
+            diags.error(
+                d.span,
+                format!(
+                    "with the parameters of scene `{}` fixed: {}",
+                    scene.name, d.message
+                ),
+            );
         }
     }
     if diags.len() > errors_before {
@@ -258,10 +323,24 @@ pub fn satisfies(value: f64, op: BoundOp, bound: f64) -> bool {
 }
 
 /// Lower an expression that must be a finite number.
-fn constant(e: &Expr, names: &HashMap<String, crate::expr::Id>, ctx: &str, diags: &mut Diagnostics) -> Option<f64> {
+fn constant(
+    e: &Expr,
+    names: &HashMap<String, crate::expr::Id>,
+    ctx: &str,
+    diags: &mut Diagnostics,
+) -> Option<f64> {
     let mut g = Graph::new();
     let before = diags.len();
-    let id = lower(&mut g, e, &Scope { names, velocity: None, context: ctx }, diags);
+    let id = lower(
+        &mut g,
+        e,
+        &Scope {
+            names,
+            velocity: None,
+            context: ctx,
+        },
+        diags,
+    );
     if diags.len() > before {
         return None;
     }
@@ -292,13 +371,27 @@ fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> 
             ),
         }
     }
-    let missing: Vec<&str> = KEYS.iter().zip(&found).filter(|(_, f)| f.is_none()).map(|(k, _)| *k).collect();
+    let missing: Vec<&str> = KEYS
+        .iter()
+        .zip(&found)
+        .filter(|(_, f)| f.is_none())
+        .map(|(k, _)| *k)
+        .collect();
     if !missing.is_empty() {
-        diags.error(o.span, format!("the oscillator lacks {}", missing.join(", ")));
+        diags.error(
+            o.span,
+            format!("the oscillator lacks {}", missing.join(", ")),
+        );
         return None;
     }
     let [mass, damping, stiffness, forcing, frequency] = found.map(|f| f.expect("checked above"));
-    Some(Oscillator { mass, damping, stiffness, forcing, frequency })
+    Some(Oscillator {
+        mass,
+        damping,
+        stiffness,
+        forcing,
+        frequency,
+    })
 }
 
 fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
@@ -310,26 +403,48 @@ fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
     ] {
         let v = inst.at_defaults(model, id);
         if v.is_nan() || v <= 0.0 {
-            diags.error(e.span(), format!("the {what} `{}` is {v} at the defaults; it must be positive", e.to_token_stream()));
+            diags.error(
+                e.span(),
+                format!(
+                    "the {what} `{}` is {v} at the defaults; it must be positive",
+                    e.to_token_stream()
+                ),
+            );
         }
     }
 }
 
 /// Sort boundaries by velocity at the defaults, and remap the domains.
 fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) {
-    let vel: Vec<f64> = inst.boundary_velocity.iter().map(|&id| inst.at_defaults(model, id)).collect();
+    let vel: Vec<f64> = inst
+        .boundary_velocity
+        .iter()
+        .map(|&id| inst.at_defaults(model, id))
+        .collect();
     let mut order: Vec<usize> = (0..model.boundaries.len()).collect();
     order.sort_by(|&a, &b| vel[a].total_cmp(&vel[b]));
     for w in order.windows(2) {
         if vel[w[0]] == vel[w[1]] {
             let (a, b) = (&model.boundaries[w[0]], &model.boundaries[w[1]]);
-            diags.error(b.span, format!("`{}` and `{}` have the same velocity {} at the defaults", a.label, b.label, vel[w[0]]));
+            diags.error(
+                b.span,
+                format!(
+                    "`{}` and `{}` have the same velocity {} at the defaults",
+                    a.label, b.label, vel[w[0]]
+                ),
+            );
         }
     }
     for &i in &order {
         if !vel[i].is_finite() {
             let b = &model.boundaries[i];
-            diags.error(b.velocity.span(), format!("the velocity of `{}` is {} at the defaults", b.label, vel[i]));
+            diags.error(
+                b.velocity.span(),
+                format!(
+                    "the velocity of `{}` is {} at the defaults",
+                    b.label, vel[i]
+                ),
+            );
         }
     }
     let mut position = vec![0; order.len()];
@@ -355,7 +470,12 @@ fn check_bands(model: &mut Model, model_span: Span, diags: &mut Diagnostics) {
             (Some(lo), Some(hi)) if hi <= lo => {
                 diags.error(
                     d.span,
-                    format!("empty band in domain {}: `{}` is not below `{}`", d.label, label(lo), label(hi)),
+                    format!(
+                        "empty band in domain {}: `{}` is not below `{}`",
+                        d.label,
+                        label(lo),
+                        label(hi)
+                    ),
                 );
                 ok = false;
                 continue;
@@ -382,7 +502,10 @@ fn check_bands(model: &mut Model, model_span: Span, diags: &mut Diagnostics) {
         if let Some(other) = covered[interval] {
             diags.error(
                 d.span,
-                format!("domain {} overlaps domain {}: both cover the same velocity band", d.label, model.domains[other].label),
+                format!(
+                    "domain {} overlaps domain {}: both cover the same velocity band",
+                    d.label, model.domains[other].label
+                ),
             );
             ok = false;
         } else {
@@ -397,14 +520,25 @@ fn check_bands(model: &mut Model, model_span: Span, diags: &mut Diagnostics) {
             let band = match k {
                 0 => format!("v < {}", model.boundaries[0].label),
                 k if k == n => format!("v > {}", model.boundaries[n - 1].label),
-                k => format!("{} < v < {}", model.boundaries[k - 1].label, model.boundaries[k].label),
+                k => format!(
+                    "{} < v < {}",
+                    model.boundaries[k - 1].label,
+                    model.boundaries[k].label
+                ),
             };
-            let span = if k < n { model.boundaries[k].span } else { model_span };
+            let span = if k < n {
+                model.boundaries[k].span
+            } else {
+                model_span
+            };
             diags.error(span, format!("gap: no domain covers the band {band}"));
         }
     }
     if covered.iter().all(Option::is_some) {
-        model.domains = covered.iter().map(|c| model.domains[c.expect("all covered")].clone()).collect();
+        model.domains = covered
+            .iter()
+            .map(|c| model.domains[c.expect("all covered")].clone())
+            .collect();
     }
 }
 
@@ -434,10 +568,23 @@ fn is_affine(g: &mut Graph, id: crate::expr::Id) -> bool {
 }
 
 /// The smallest subterm of `e` that is not affine in `v`.
-fn offending_term<'e>(g: &mut Graph, names: &HashMap<String, crate::expr::Id>, e: &'e Expr) -> &'e Expr {
+fn offending_term<'e>(
+    g: &mut Graph,
+    names: &HashMap<String, crate::expr::Id>,
+    e: &'e Expr,
+) -> &'e Expr {
     let v = g.var(LAW_V);
     let affine = |g: &mut Graph, sub: &Expr| {
-        let id = lower(g, sub, &Scope { names, velocity: Some(v), context: "" }, &mut Diagnostics::new());
+        let id = lower(
+            g,
+            sub,
+            &Scope {
+                names,
+                velocity: Some(v),
+                context: "",
+            },
+            &mut Diagnostics::new(),
+        );
         is_affine(g, id)
     };
     let children: Vec<&Expr> = match e {
@@ -462,7 +609,9 @@ fn perturbations(n: usize, trials: usize) -> Vec<Vec<f64>> {
         .map(|_| {
             (0..n)
                 .map(|_| {
-                    state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    state = state
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
                     ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
                 })
                 .collect()
@@ -504,7 +653,11 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             continue;
         }
         for t in &trials {
-            let p: Vec<f64> = defaults.iter().zip(t).map(|(d, u)| d * (1.0 + 0.3 * u) + 0.1 * u).collect();
+            let p: Vec<f64> = defaults
+                .iter()
+                .zip(t)
+                .map(|(d, u)| d * (1.0 + 0.3 * u) + 0.1 * u)
+                .collect();
             let jv = g.eval(jump, &p, &[]);
             let sc = 1.0 + g.eval(fa, &p, &[]).abs();
             if jv.abs() > 1e-9 * sc {
@@ -523,8 +676,12 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
 }
 
 fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
-    let Some(k) = model.stick_boundary() else { return };
-    let Some(bound) = inst.static_bound else { return };
+    let Some(k) = model.stick_boundary() else {
+        return;
+    };
+    let Some(bound) = inst.static_bound else {
+        return;
+    };
     let b = &model.boundaries[k];
     let mut g = inst.graph.clone();
     let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
@@ -557,7 +714,9 @@ fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics
     for name in &s.free {
         let n = name.to_string();
         match model.params.iter().position(|p| p.name == n) {
-            Some(i) if free.contains(&i) => diags.error(name.span(), format!("`{n}` is freed twice")),
+            Some(i) if free.contains(&i) => {
+                diags.error(name.span(), format!("`{n}` is freed twice"))
+            }
             Some(i) => free.push(i),
             None if model.derived.iter().any(|d| d.name == n) => diags.error(
                 name.span(),
@@ -592,14 +751,21 @@ fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics
 /// each mapping ends on the boundary where the next one starts.
 pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> {
     let t = text.trim();
-    let inner = t.strip_prefix("P_{").and_then(|r| r.strip_suffix('}')).unwrap_or(t);
+    let inner = t
+        .strip_prefix("P_{")
+        .and_then(|r| r.strip_suffix('}'))
+        .unwrap_or(t);
     let mut out = Vec::new();
     for tok in inner.split_whitespace() {
         match model.mappings.iter().position(|m| m.name == tok) {
             Some(i) => out.push(i),
             None => {
                 let known: Vec<&str> = model.mappings.iter().map(|m| m.name.as_str()).collect();
-                return Err(format!("`{tok}` is not a mapping of model `{}` (it has {})", model.name, known.join(", ")));
+                return Err(format!(
+                    "`{tok}` is not a mapping of model `{}` (it has {})",
+                    model.name,
+                    known.join(", ")
+                ));
             }
         }
     }

@@ -28,7 +28,10 @@ impl Diagnostics {
 
     /// Record an error at `span`.
     pub fn error(&mut self, span: Span, message: impl Into<String>) {
-        self.list.push(Diagnostic { span, message: message.into() });
+        self.list.push(Diagnostic {
+            span,
+            message: message.into(),
+        });
     }
 
     /// Record every error carried by a `syn::Error`.
@@ -73,7 +76,10 @@ impl Diagnostics {
         for d in &self.list {
             let start = d.span.start();
             let (line, col) = (start.line, start.column + 1);
-            out.push_str(&format!("error: {}\n  --> {}:{}:{}\n", d.message, file, line, col));
+            out.push_str(&format!(
+                "error: {}\n  --> {}:{}:{}\n",
+                d.message, file, line, col
+            ));
             if let Some(text) = line.checked_sub(1).and_then(|i| lines.get(i)) {
                 let width = line.to_string().len();
                 let end = d.span.end();
@@ -82,8 +88,21 @@ impl Diagnostics {
                 } else {
                     1
                 };
-                let pad: String = text.chars().take(start.column).map(|c| if c == '\t' { '\t' } else { ' ' }).collect();
-                out.push_str(&format!("{:w$} |\n{} | {}\n{:w$} | {}{}\n", "", line, text, "", pad, "^".repeat(len), w = width));
+                let pad: String = text
+                    .chars()
+                    .take(start.column)
+                    .map(|c| if c == '\t' { '\t' } else { ' ' })
+                    .collect();
+                out.push_str(&format!(
+                    "{:w$} |\n{} | {}\n{:w$} | {}{}\n",
+                    "",
+                    line,
+                    text,
+                    "",
+                    pad,
+                    "^".repeat(len),
+                    w = width
+                ));
             }
         }
         out.push_str(&format!(

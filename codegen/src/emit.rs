@@ -160,7 +160,12 @@ impl Writer<'_> {
 
 /// Straight-line code computing `outputs`: the statements and one
 /// expression per output.
-fn straight_line(g: &Graph, params: &[String], vars: &[(u32, &str)], outputs: &[Id]) -> (TokenStream, Vec<TokenStream>) {
+fn straight_line(
+    g: &Graph,
+    params: &[String],
+    vars: &[(u32, &str)],
+    outputs: &[Id],
+) -> (TokenStream, Vec<TokenStream>) {
     let n = outputs.iter().map(|o| o.0 as usize + 1).max().unwrap_or(0);
     let mut reach = vec![false; n];
     let mut uses = vec![0u32; n];
@@ -181,7 +186,10 @@ fn straight_line(g: &Graph, params: &[String], vars: &[(u32, &str)], outputs: &[
     let mut w = Writer {
         g,
         params,
-        vars: vars.iter().map(|(k, name)| (*k, format_ident!("{}", name))).collect(),
+        vars: vars
+            .iter()
+            .map(|(k, name)| (*k, format_ident!("{}", name)))
+            .collect(),
         bound: HashMap::new(),
     };
     let mut stmts = TokenStream::new();
@@ -194,6 +202,10 @@ fn straight_line(g: &Graph, params: &[String], vars: &[(u32, &str)], outputs: &[
         })
         .collect();
     used_params.sort_unstable();
+    if used_params.is_empty() {
+        // Every parameter this function reads was folded at build time.
+        stmts.extend(quote!(let _ = p;));
+    }
     for k in used_params {
         let name = format_ident!("{}", params[k as usize]);
         stmts.extend(quote!(let #name = p.#name;));
@@ -211,7 +223,10 @@ fn straight_line(g: &Graph, params: &[String], vars: &[(u32, &str)], outputs: &[
             Node::Hom(kind, d, w2, tau) => {
                 let key = (d, w2, tau);
                 if !homs.contains_key(&key) {
-                    let (ec, es) = (format_ident!("ec{}", counter), format_ident!("es{}", counter));
+                    let (ec, es) = (
+                        format_ident!("ec{}", counter),
+                        format_ident!("es{}", counter),
+                    );
                     counter += 1;
                     let call = w.hom_call(d, w2, tau);
                     stmts.extend(quote!(let (#ec, #es) = #call;));
@@ -252,7 +267,8 @@ fn doc1(s: &str) -> TokenStream {
     quote!(#[doc = #s])
 }
 
-fn camel(name: &str) -> String {
+/// `sweep_w` → `SweepW`.
+pub fn camel(name: &str) -> String {
     name.split('_')
         .filter(|s| !s.is_empty())
         .map(|s| {
@@ -276,15 +292,34 @@ fn bound_tokens(op: BoundOp) -> TokenStream {
 
 /// Items of one instance: the full model (`scene = None`) or a scene.
 fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) -> TokenStream {
-    let (free, mapping_filter, type_name, display_name): (Vec<usize>, Option<Vec<usize>>, String, String) = match scene {
-        None => ((0..model.params.len()).collect(), None, camel(&model.name), model.name.clone()),
+    let (free, mapping_filter, type_name, display_name): (
+        Vec<usize>,
+        Option<Vec<usize>>,
+        String,
+        String,
+    ) = match scene {
+        None => (
+            (0..model.params.len()).collect(),
+            None,
+            camel(&model.name),
+            model.name.clone(),
+        ),
         Some(s) => {
             let sc = &model.scenes[s];
             let mut used: Vec<usize> = sc.structures.iter().flatten().copied().collect();
             used.sort_unstable();
             used.dedup();
-            let filter = if sc.structures.is_empty() { None } else { Some(used) };
-            (sc.free.clone(), filter, camel(&sc.name), format!("{}::{}", model.name, sc.name))
+            let filter = if sc.structures.is_empty() {
+                None
+            } else {
+                Some(used)
+            };
+            (
+                sc.free.clone(),
+                filter,
+                camel(&sc.name),
+                format!("{}::{}", model.name, sc.name),
+            )
         }
     };
     let mut inst = lower_instance(model, &free, diags);
@@ -331,7 +366,9 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 
     // --- Conditions checked at run time ---------------------------------
     let vel: Vec<Id> = inst.boundary_velocity.clone();
-    let levels = model.stick_boundary().map(|k| equations::kinetic_levels(&mut inst, k));
+    let levels = model
+        .stick_boundary()
+        .map(|k| equations::kinetic_levels(&mut inst, k));
     let mut cond_outputs = vec![inst.mass, inst.stiffness, inst.frequency];
     cond_outputs.extend(&vel);
     if let (Some(sb), Some((la, lb))) = (inst.static_bound, levels) {
@@ -426,7 +463,15 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
                 });
             }
         } else {
-            gens.push(Gen { fn_name: base, name: m.name.clone(), domain: m.domain, from: m.from, to: m.to, kind: m.kind, exit: None });
+            gens.push(Gen {
+                fn_name: base,
+                name: m.name.clone(),
+                domain: m.domain,
+                from: m.from,
+                to: m.to,
+                kind: m.kind,
+                exit: None,
+            });
         }
     }
     let mapping_infos = gens.iter().map(|m| {
@@ -484,7 +529,6 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
             #dc
             #[inline]
             pub fn #f(p: &Params) -> ::stickslip::Coefficients {
-                let _ = p;
                 #stmts
                 ::stickslip::Coefficients { two_d: #a, c: #b, b: #c }
             }
@@ -513,7 +557,12 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 
         let vars = [0, 1, 2].map(|k| inst.graph.var(k));
         let (field, rate) = equations::normal_field(&mut inst, j, vars);
-        let (stmts, outs) = straight_line(&inst.graph, &pnames, &[(0, "x"), (1, "y"), (2, "phi")], &[field, rate]);
+        let (stmts, outs) = straight_line(
+            &inst.graph,
+            &pnames,
+            &[(0, "x"), (1, "y"), (2, "phi")],
+            &[field, rate],
+        );
         let (fo, ro) = (&outs[0], &outs[1]);
         let f = format_ident!("normal_field_{}", label);
         let dc = doc(&[
@@ -547,7 +596,10 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
                 match inst.graph.diff(fi, k) {
                     Ok(d) => jac.push(d),
                     Err(e) => {
-                        diags.error(Span::call_site(), format!("internal: cannot differentiate mapping {}: {e:?}", m.name));
+                        diags.error(
+                            Span::call_site(),
+                            format!("internal: cannot differentiate mapping {}: {e:?}", m.name),
+                        );
                         return TokenStream::new();
                     }
                 }
@@ -619,19 +671,23 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
         /// Velocities of the boundaries, lowest first.
         #[inline]
         pub fn boundary_velocities(p: &Params) -> [f64; #nb] {
-            let _ = p;
             #stmts
             [#(#outs),*]
         }
     });
-    let osc = [inst.mass, inst.damping, inst.stiffness, inst.forcing, inst.frequency];
+    let osc = [
+        inst.mass,
+        inst.damping,
+        inst.stiffness,
+        inst.forcing,
+        inst.frequency,
+    ];
     let (stmts, outs) = straight_line(&inst.graph, &pnames, &[], &osc);
     let (om, od, oc, oa, ow) = (&outs[0], &outs[1], &outs[2], &outs[3], &outs[4]);
     fns.extend(quote! {
         /// The oscillator: `x'' + 2 d x' + c x = A0 cos(W t) - f(x')` (Eq. 5).
         #[inline]
         pub fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-            let _ = p;
             #stmts
             ::stickslip::Oscillator { mass: #om, damping: #od, stiffness: #oc, amplitude: #oa, frequency: #ow }
         }
@@ -640,7 +696,8 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
         Some(k) => {
             let vars = [0, 1].map(|i| inst.graph.var(i));
             let forces = equations::stick_forces(&mut inst, k, vars);
-            let (stmts, outs) = straight_line(&inst.graph, &pnames, &[(0, "x"), (1, "phi")], &forces);
+            let (stmts, outs) =
+                straight_line(&inst.graph, &pnames, &[(0, "x"), (1, "phi")], &forces);
             let (a, b, c, d, e) = (&outs[0], &outs[1], &outs[2], &outs[3], &outs[4]);
             let label = format!(
                 "Forces on the stick boundary {} at `(x, W t)` (Eqs. 2, 24–25).",
@@ -655,39 +712,56 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
                     ::stickslip::StickForces { non_friction: #a, input_above: #b, input_below: #c, output_above: #d, output_below: #e }
                 }
             });
-            let (stmts, outs) = straight_line(&inst.graph, &pnames, &[], &[inst.static_bound.expect("stick")]);
+            let (stmts, outs) = straight_line(
+                &inst.graph,
+                &pnames,
+                &[],
+                &[inst.static_bound.expect("stick")],
+            );
             let o = &outs[0];
             fns.extend(quote! {
                 /// The static friction bound `as` per unit mass on the stick boundary.
                 #[inline]
                 pub fn static_bound(p: &Params) -> f64 {
-                    let _ = p;
                     #stmts
                     #o
                 }
             });
-            (quote!(Some(stick_forces(p, x, phi))), quote!(Some(static_bound(p))))
+            (
+                quote!(Some(stick_forces(p, x, phi))),
+                quote!(Some(static_bound(p))),
+            )
         }
-        None => (quote!({ let _ = (p, x, phi); None }), quote!({ let _ = p; None })),
+        None => (
+            quote!({
+                let _ = (p, x, phi);
+                None
+            }),
+            quote!({
+                let _ = p;
+                None
+            }),
+        ),
     };
 
     let nan2 = quote!([f64::NAN, f64::NAN]);
     let info_doc = doc1(&format!("Static description of `{display_name}`."));
-    let type_doc = if scene.is_some() {
-        let sc = &model.scenes[scene.expect("scene")];
-        let mut lines = sc.docs.clone();
-        lines.push(format!(
+    let type_doc =
+        if scene.is_some() {
+            let sc = &model.scenes[scene.expect("scene")];
+            let mut lines = sc.docs.clone();
+            lines.push(format!(
             "Scene `{}` of model `{}`: free parameters {}; the others are folded into constants.",
             sc.name,
             model.name,
             pnames.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
         ));
-        doc(&lines)
-    } else {
-        let mut lines = model.docs.clone();
-        lines.push(format!("Model `{}`, every parameter free.", model.name));
-        doc(&lines)
-    };
+            doc(&lines)
+        } else {
+            let mut lines = model.docs.clone();
+            lines.push(format!("Model `{}`, every parameter free.", model.name));
+            doc(&lines)
+        };
     let params_doc = doc1(&format!("Run-time parameters of `{display_name}`."));
     quote! {
         #params_doc
@@ -788,7 +862,10 @@ pub fn emit(model: &Model, options: &Options, diags: &mut Diagnostics) -> Option
     let file: syn::File = match syn::parse2(items) {
         Ok(f) => f,
         Err(e) => {
-            diags.error(Span::call_site(), format!("internal: generated code does not parse: {e}"));
+            diags.error(
+                Span::call_site(),
+                format!("internal: generated code does not parse: {e}"),
+            );
             return None;
         }
     };

@@ -78,7 +78,13 @@ fn particular(g: &mut Graph, a: Id, b: Id, c: Id, w: Id, phi: Id) -> (Id, Id) {
 
 /// Residual of a flow mapping in domain `j` from boundary `from` to `to`
 /// (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = y_j(t_{i+1}) - V_β`.
-pub fn flow_mapping(inst: &mut Instance, j: usize, from: usize, to: usize, vars: [Id; 4]) -> [Id; 2] {
+pub fn flow_mapping(
+    inst: &mut Instance,
+    j: usize,
+    from: usize,
+    to: usize,
+    vars: [Id; 4],
+) -> [Id; 2] {
     let [x0, phi0, x1, phi1] = vars;
     let (va, vb) = (inst.boundary_velocity[from], inst.boundary_velocity[to]);
     let (x, v) = flow(inst, j, x0, va, phi0, phi1);
@@ -93,7 +99,9 @@ pub fn flow_mapping(inst: &mut Instance, j: usize, from: usize, to: usize, vars:
 pub fn stick_mapping(inst: &mut Instance, k: usize, sign: f64, vars: [Id; 4]) -> [Id; 2] {
     let [x0, phi0, x1, phi1] = vars;
     let vs = inst.boundary_velocity[k];
-    let bound = inst.static_bound.expect("stick mapping on the stick boundary");
+    let bound = inst
+        .static_bound
+        .expect("stick mapping on the stick boundary");
     let (w, a0, d, c) = (inst.frequency, inst.forcing, inst.damping, inst.stiffness);
     let g = &mut inst.graph;
     let dphi = g.sub(phi1, phi0);
@@ -173,7 +181,13 @@ pub fn stick_forces(inst: &mut Instance, k: usize, vars: [Id; 2]) -> [Id; 5] {
     let fnf = non_friction_force(g, a0, d, c, vs, x, phi);
     let fa = g.substitute(la, LAW_V, vs);
     let fb = g.substitute(lb, LAW_V, vs);
-    [fnf, g.sub(fnf, fa), g.sub(fnf, fb), g.sub(fnf, bound), g.add(fnf, bound)]
+    [
+        fnf,
+        g.sub(fnf, fa),
+        g.sub(fnf, fb),
+        g.sub(fnf, bound),
+        g.add(fnf, bound),
+    ]
 }
 
 /// Kinetic friction levels on both sides of the stick boundary `k`,

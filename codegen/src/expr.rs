@@ -378,7 +378,11 @@ impl Graph {
     fn diff_hom(&mut self, kind: Hom, d: Id, w2: Id, tau: Id, var: u32) -> Result<Id, DiffError> {
         let ec = self.hom(Hom::Ec, d, w2, tau);
         let es = self.hom(Hom::Es, d, w2, tau);
-        let (dd, dw2, dtau) = (self.diff(d, var)?, self.diff(w2, var)?, self.diff(tau, var)?);
+        let (dd, dw2, dtau) = (
+            self.diff(d, var)?,
+            self.diff(w2, var)?,
+            self.diff(tau, var)?,
+        );
         let own = match kind {
             Hom::Ec => ec,
             Hom::Es => es,
@@ -426,11 +430,17 @@ impl Graph {
             Node::Var(v) if v == var => by,
             Node::Const(_) | Node::Param(_) | Node::Var(_) => id,
             Node::Add(a, b) => {
-                let (a, b) = (self.subst_rec(a, var, by, memo), self.subst_rec(b, var, by, memo));
+                let (a, b) = (
+                    self.subst_rec(a, var, by, memo),
+                    self.subst_rec(b, var, by, memo),
+                );
                 self.add(a, b)
             }
             Node::Mul(a, b) => {
-                let (a, b) = (self.subst_rec(a, var, by, memo), self.subst_rec(b, var, by, memo));
+                let (a, b) = (
+                    self.subst_rec(a, var, by, memo),
+                    self.subst_rec(b, var, by, memo),
+                );
                 self.mul(a, b)
             }
             Node::Neg(a) => {
@@ -617,7 +627,10 @@ mod tests {
                     let h = 1e-6;
                     let fd = (g.eval(f, &[], &[t + h]) - g.eval(f, &[], &[t - h])) / (2.0 * h);
                     let an = g.eval(df, &[], &[t]);
-                    assert!((fd - an).abs() < 1e-7 * (1.0 + an.abs()), "{kind:?} {d} {w2}: {fd} vs {an}");
+                    assert!(
+                        (fd - an).abs() < 1e-7 * (1.0 + an.abs()),
+                        "{kind:?} {d} {w2}: {fd} vs {an}"
+                    );
                 }
             }
         }

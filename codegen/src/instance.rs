@@ -69,11 +69,29 @@ pub fn lower_instance(model: &Model, free: &[usize], diags: &mut Diagnostics) ->
     }
     for d in &model.derived {
         let context = format!("derived quantity `{}`", d.name);
-        let id = lower(&mut graph, &d.value, &Scope { names: &names, velocity: None, context: &context }, diags);
+        let id = lower(
+            &mut graph,
+            &d.value,
+            &Scope {
+                names: &names,
+                velocity: None,
+                context: &context,
+            },
+            diags,
+        );
         names.insert(d.name.clone(), id);
     }
     let mut expr = |graph: &mut Graph, e: &syn::Expr, context: &str, velocity: Option<Id>| {
-        lower(graph, e, &Scope { names: &names, velocity, context }, diags)
+        lower(
+            graph,
+            e,
+            &Scope {
+                names: &names,
+                velocity,
+                context,
+            },
+            diags,
+        )
     };
     let o = &model.oscillator;
     let mass = expr(&mut graph, &o.mass, "the mass", None);
@@ -98,14 +116,22 @@ pub fn lower_instance(model: &Model, free: &[usize], diags: &mut Diagnostics) ->
         let law = expr(&mut graph, &dm.law, &ctx, Some(v));
         // A non-affine law is reported by the checker; here the slope is
         // taken at v = 0 so that lowering can go on.
-        let slope_v = graph.diff(law, LAW_V).unwrap_or_else(|_| graph.constant(0.0));
+        let slope_v = graph
+            .diff(law, LAW_V)
+            .unwrap_or_else(|_| graph.constant(0.0));
         let zero = graph.constant(0.0);
         let slope = graph.substitute(slope_v, LAW_V, zero);
         let b = graph.substitute(law, LAW_V, zero);
         let half = graph.constant(0.5);
         let hs = graph.mul(half, slope);
         let d = graph.add(damping, hs);
-        domains.push(DomainNodes { law, slope, b, d, c: stiffness });
+        domains.push(DomainNodes {
+            law,
+            slope,
+            b,
+            d,
+            c: stiffness,
+        });
     }
     Instance {
         free: free.to_vec(),

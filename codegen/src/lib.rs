@@ -51,11 +51,16 @@ pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
 }
 
 /// Generate the Rust module body for the model in `tokens`.
-pub fn generate(tokens: TokenStream, options: &Options) -> Result<String, Diagnostics> {
+pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile, Diagnostics> {
     let model = model_from_tokens(tokens)?;
     let mut diags = Diagnostics::new();
     match emit::emit(&model, options, &mut diags) {
-        Some(code) if diags.is_empty() => Ok(code),
+        Some(code) if diags.is_empty() => Ok(GeneratedFile {
+            instances: instance_names(&model),
+            doc: model.docs.join("\n"),
+            name: model.name,
+            code,
+        }),
         _ => Err(diags),
     }
 }
@@ -78,23 +83,56 @@ pub struct GeneratedFile {
     pub name: String,
     /// The formatted module body.
     pub code: String,
+    /// The model's doc comment.
+    pub doc: String,
+    /// The model and its scenes, each with its module path and type name.
+    pub instances: Vec<InstanceName>,
+}
+
+/// Where a generated model or scene lives in the generated module.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct InstanceName {
+    /// `paper` or `paper::sweep_w`.
+    pub name: String,
+    /// Rust path relative to the models module (same as `name`).
+    pub path: String,
+    /// The type implementing `Model` (`Paper`, `SweepW`).
+    pub type_name: String,
+}
+
+fn instance_names(model: &Model) -> Vec<InstanceName> {
+    let mut out = vec![InstanceName {
+        name: model.name.clone(),
+        path: model.name.clone(),
+        type_name: emit::camel(&model.name),
+    }];
+    for s in &model.scenes {
+        let p = format!("{}::{}", model.name, s.name);
+        out.push(InstanceName {
+            name: p.clone(),
+            path: p,
+            type_name: emit::camel(&s.name),
+        });
+    }
+    out
 }
 
 /// Read, check and generate a model file. On failure the error is the
 /// rendered report: `file:line:col`, the source line and a caret per error.
 pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
-    let source = std::fs::read_to_string(path).map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
+    let source = std::fs::read_to_string(path)
+        .map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
     generate_source(&source, origin)
 }
 
 /// Like [`generate_file`], from source text; `origin` names the file in messages.
 pub fn generate_source(source: &str, origin: &str) -> Result<GeneratedFile, String> {
     let tokens = tokenize(source).map_err(|d| d.render(origin, source))?;
-    let model = model_from_tokens(tokens).map_err(|d| d.render(origin, source))?;
-    let mut diags = Diagnostics::new();
-    let code = emit::emit(&model, &Options { origin: origin.to_string() }, &mut diags);
-    match code {
-        Some(code) if diags.is_empty() => Ok(GeneratedFile { name: model.name, code }),
-        _ => Err(diags.render(origin, source)),
-    }
+    generate(
+        tokens,
+        &Options {
+            origin: origin.to_string(),
+        },
+    )
+    .map_err(|d| d.render(origin, source))
 }

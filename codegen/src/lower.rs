@@ -37,7 +37,10 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                 Err(e) => fail(graph, diags, e),
             },
             other => {
-                diags.error(other.span(), format!("expected a number in {}", scope.context));
+                diags.error(
+                    other.span(),
+                    format!("expected a number in {}", scope.context),
+                );
                 graph.constant(0.0)
             }
         },
@@ -53,7 +56,10 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                 }
                 diags.error(
                     ident.span(),
-                    format!("`v` (the velocity) is only defined inside a friction law, not in {}", scope.context),
+                    format!(
+                        "`v` (the velocity) is only defined inside a friction law, not in {}",
+                        scope.context
+                    ),
                 );
                 return graph.constant(0.0);
             }
@@ -61,7 +67,10 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                 Some(&id) => id,
                 None => {
                     let what = if scope.names.is_empty() {
-                        format!("{} must be a number; it cannot refer to `{}`", scope.context, name)
+                        format!(
+                            "{} must be a number; it cannot refer to `{}`",
+                            scope.context, name
+                        )
                     } else {
                         format!("unknown name `{}` in {}", name, scope.context)
                     };
@@ -106,7 +115,10 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                 _ => {
                     diags.error(
                         b.op.span(),
-                        format!("operator `{}` is not allowed; use + - * / and powi(x, n)", b.op.to_token_stream()),
+                        format!(
+                            "operator `{}` is not allowed; use + - * / and powi(x, n)",
+                            b.op.to_token_stream()
+                        ),
                     );
                     graph.constant(0.0)
                 }
@@ -141,9 +153,17 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
             }
             if name == "powi" {
                 let n = match args.get(1) {
-                    Some(Expr::Lit(syn::ExprLit { lit: Lit::Int(i), .. })) => i.base10_parse::<i32>().ok(),
-                    Some(Expr::Unary(syn::ExprUnary { op: UnOp::Neg(_), expr, .. })) => match &**expr {
-                        Expr::Lit(syn::ExprLit { lit: Lit::Int(i), .. }) => i.base10_parse::<i32>().ok().map(|n| -n),
+                    Some(Expr::Lit(syn::ExprLit {
+                        lit: Lit::Int(i), ..
+                    })) => i.base10_parse::<i32>().ok(),
+                    Some(Expr::Unary(syn::ExprUnary {
+                        op: UnOp::Neg(_),
+                        expr,
+                        ..
+                    })) => match &**expr {
+                        Expr::Lit(syn::ExprLit {
+                            lit: Lit::Int(i), ..
+                        }) => i.base10_parse::<i32>().ok().map(|n| -n),
                         _ => None,
                     },
                     _ => None,
@@ -152,13 +172,22 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                     (2, Some(n)) => {
                         let a = lower(graph, args[0], scope, diags);
                         if n < 0 && graph.as_const(a) == Some(0.0) {
-                            diags.error(args[0].span(), format!("division by zero: negative power of 0 in {}", scope.context));
+                            diags.error(
+                                args[0].span(),
+                                format!(
+                                    "division by zero: negative power of 0 in {}",
+                                    scope.context
+                                ),
+                            );
                             return graph.constant(0.0);
                         }
                         return graph.powi(a, n);
                     }
                     _ => {
-                        diags.error(call.span(), "`powi(x, n)` takes an expression and an integer literal");
+                        diags.error(
+                            call.span(),
+                            "`powi(x, n)` takes an expression and an integer literal",
+                        );
                         return graph.constant(0.0);
                     }
                 }

@@ -131,13 +131,20 @@ fn docs_of(attrs: &[Attribute], diags: &mut Diagnostics) -> Vec<String> {
     for attr in attrs {
         if attr.path().is_ident("doc") {
             if let syn::Meta::NameValue(nv) = &attr.meta {
-                if let Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) = &nv.value {
+                if let Expr::Lit(syn::ExprLit {
+                    lit: syn::Lit::Str(s),
+                    ..
+                }) = &nv.value
+                {
                     out.push(s.value().trim().to_string());
                     continue;
                 }
             }
         }
-        diags.error(attr.pound_token.span, "only doc comments (`///`) may annotate a model item");
+        diags.error(
+            attr.pound_token.span,
+            "only doc comments (`///`) may annotate a model item",
+        );
     }
     out
 }
@@ -154,12 +161,18 @@ pub fn parse_model(tokens: TokenStream, diags: &mut Diagnostics) -> Option<Model
     }
 }
 
-fn parse_model_stream(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option<ModelAst>> {
+fn parse_model_stream(
+    input: ParseStream,
+    diags: &mut Diagnostics,
+) -> syn::Result<Option<ModelAst>> {
     let mut inner = input.call(Attribute::parse_inner)?;
     inner.extend(input.call(Attribute::parse_outer)?);
     let docs = docs_of(&inner, diags);
     input.parse::<kw::model>().map_err(|e| {
-        syn::Error::new(e.span(), "expected `model NAME { ... }` (a model file holds one model)")
+        syn::Error::new(
+            e.span(),
+            "expected `model NAME { ... }` (a model file holds one model)",
+        )
     })?;
     let name: Ident = input.parse()?;
     let body;
@@ -223,13 +236,20 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
                 input.parse::<Token![<]>()?;
                 BoundOp::Lt
             } else {
-                return Err(input.error("expected a bound: `> value`, `>= value`, `< value` or `<= value`"));
+                return Err(
+                    input.error("expected a bound: `> value`, `>= value`, `< value` or `<= value`")
+                );
             };
             let value: Expr = input.parse()?;
             bounds.push((op, value, span));
         }
         input.parse::<Token![;]>()?;
-        Ok(Item::Param(ParamAst { docs, name, default, bounds }))
+        Ok(Item::Param(ParamAst {
+            docs,
+            name,
+            default,
+            bounds,
+        }))
     } else if la.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let name: Ident = input.parse()?;
@@ -252,7 +272,10 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
             }
             body.parse::<Token![,]>()?;
         }
-        Ok(Item::Oscillator(OscillatorAst { span: kw.span, fields }))
+        Ok(Item::Oscillator(OscillatorAst {
+            span: kw.span,
+            fields,
+        }))
     } else if la.peek(kw::boundary) {
         input.parse::<kw::boundary>()?;
         let label: Ident = input.parse()?;
@@ -264,12 +287,20 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
             input.parse::<kw::stick>().map_err(|e| {
-                syn::Error::new(e.span(), "expected `stick BOUND` (the static friction bound per unit mass)")
+                syn::Error::new(
+                    e.span(),
+                    "expected `stick BOUND` (the static friction bound per unit mass)",
+                )
             })?;
             stick = Some(input.parse::<Expr>()?);
         }
         input.parse::<Token![;]>()?;
-        Ok(Item::Boundary(BoundaryAst { docs, label, velocity, stick }))
+        Ok(Item::Boundary(BoundaryAst {
+            docs,
+            label,
+            velocity,
+            stick,
+        }))
     } else if la.peek(kw::domain) {
         input.parse::<kw::domain>()?;
         let label: LitInt = input.parse()?;
@@ -278,7 +309,12 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
         input.parse::<Token![=>]>()?;
         let law: Expr = input.parse()?;
         input.parse::<Token![;]>()?;
-        Ok(Item::Domain(DomainAst { docs, label, band, law }))
+        Ok(Item::Domain(DomainAst {
+            docs,
+            label,
+            band,
+            law,
+        }))
     } else if la.peek(kw::scene) {
         input.parse::<kw::scene>()?;
         let name: Ident = input.parse()?;
@@ -308,11 +344,18 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
                     body.parse::<Token![,]>()?;
                 }
             } else {
-                return Err(body.error("expected `free: NAMES;` or `structures: \"..\", ..;` in a scene"));
+                return Err(
+                    body.error("expected `free: NAMES;` or `structures: \"..\", ..;` in a scene")
+                );
             }
             body.parse::<Token![;]>()?;
         }
-        Ok(Item::Scene(SceneAst { docs, name, free, structures }))
+        Ok(Item::Scene(SceneAst {
+            docs,
+            name,
+            free,
+            structures,
+        }))
     } else {
         Err(la.error())
     }
@@ -327,21 +370,39 @@ fn parse_band(input: ParseStream) -> syn::Result<BandAst> {
         if input.peek(Token![>]) {
             input.parse::<Token![>]>()?;
             let lower: Ident = input.parse()?;
-            Ok(BandAst { lower: Some(lower), upper: None, span })
+            Ok(BandAst {
+                lower: Some(lower),
+                upper: None,
+                span,
+            })
         } else if input.peek(Token![<]) {
             input.parse::<Token![<]>()?;
             let upper: Ident = input.parse()?;
-            Ok(BandAst { lower: None, upper: Some(upper), span })
+            Ok(BandAst {
+                lower: None,
+                upper: Some(upper),
+                span,
+            })
         } else {
             Err(input.error(expected))
         }
     } else if input.peek(Ident) {
         let lower: Ident = input.parse()?;
-        input.parse::<Token![<]>().map_err(|e| syn::Error::new(e.span(), expected))?;
-        input.parse::<kw::v>().map_err(|e| syn::Error::new(e.span(), expected))?;
-        input.parse::<Token![<]>().map_err(|e| syn::Error::new(e.span(), expected))?;
+        input
+            .parse::<Token![<]>()
+            .map_err(|e| syn::Error::new(e.span(), expected))?;
+        input
+            .parse::<kw::v>()
+            .map_err(|e| syn::Error::new(e.span(), expected))?;
+        input
+            .parse::<Token![<]>()
+            .map_err(|e| syn::Error::new(e.span(), expected))?;
         let upper: Ident = input.parse()?;
-        Ok(BandAst { lower: Some(lower), upper: Some(upper), span })
+        Ok(BandAst {
+            lower: Some(lower),
+            upper: Some(upper),
+            span,
+        })
     } else {
         Err(input.error(expected))
     }

@@ -1,0 +1,242 @@
+//! Run-time parameters: the generated `Params` structs implement [`ParamSet`];
+//! their validating checks report a typed [`ParamError`].
+
+use crate::model::ModelInfo;
+
+/// A comparison bound declared on a parameter in the model file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bound {
+    /// `> b`
+    Gt,
+    /// `>= b`
+    Ge,
+    /// `< b`
+    Lt,
+    /// `<= b`
+    Le,
+}
+
+impl Bound {
+    /// Whether `value` satisfies `OP bound`.
+    pub fn holds(self, value: f64, bound: f64) -> bool {
+        match self {
+            Bound::Gt => value > bound,
+            Bound::Ge => value >= bound,
+            Bound::Lt => value < bound,
+            Bound::Le => value <= bound,
+        }
+    }
+
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Bound::Gt => ">",
+            Bound::Ge => ">=",
+            Bound::Lt => "<",
+            Bound::Le => "<=",
+        }
+    }
+}
+
+/// Why a parameter set was rejected.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParamError {
+    /// NaN or infinite.
+    #[error("parameter `{name}` is {value}: it must be a finite number")]
+    NotFinite {
+        /// Parameter name.
+        name: String,
+        /// The rejected value.
+        value: f64,
+    },
+    /// Violates a bound declared in the model file.
+    #[error("parameter `{name}` = {value} violates its bound `{name} {op} {bound}`")]
+    OutOfRange {
+        /// Parameter name.
+        name: String,
+        /// The rejected value.
+        value: f64,
+        /// The operator.
+        op: &'static str,
+        /// The bound.
+        bound: f64,
+    },
+    /// Not a parameter of the model.
+    #[error("`{name}` is not a parameter of `{model}` (its parameters: {known})")]
+    Unknown {
+        /// The name asked for.
+        name: String,
+        /// Model (or scene) name.
+        model: String,
+        /// The names it has.
+        known: String,
+    },
+    /// A parameter the scene folded into a constant at build time.
+    #[error(
+        "`{name}` is fixed to {value} in `{model}` (free: {free}); use the full model to change it"
+    )]
+    Fixed {
+        /// Parameter name.
+        name: String,
+        /// Model and scene.
+        model: String,
+        /// Its build-time value.
+        value: f64,
+        /// The free parameters.
+        free: String,
+    },
+    /// Mass, stiffness or frequency not positive.
+    #[error("the {what} is {value}; it must be positive")]
+    NotPositive {
+        /// `mass`, `stiffness` or `forcing frequency`.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// Boundaries out of order (the domains would overlap).
+    #[error("boundary `{lower}` (v = {lower_v}) must lie below `{upper}` (v = {upper_v})")]
+    BoundaryOrder {
+        /// The boundary that should be lower.
+        lower: &'static str,
+        /// Its velocity.
+        lower_v: f64,
+        /// The boundary that should be higher.
+        upper: &'static str,
+        /// Its velocity.
+        upper_v: f64,
+    },
+    /// Static bound below the kinetic level.
+    #[error("the static friction bound {bound} is below the kinetic friction level {kinetic} {side} the stick boundary")]
+    StaticBelowKinetic {
+        /// `as`.
+        bound: f64,
+        /// The kinetic level.
+        kinetic: f64,
+        /// `above` or `below`.
+        side: &'static str,
+    },
+}
+
+/// A set of run-time parameters, as generated for a model or scene.
+pub trait ParamSet: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static {
+    /// Names of the fields, in order.
+    const NAMES: &'static [&'static str];
+    /// Field `index` (NaN when out of range).
+    fn get(&self, index: usize) -> f64;
+    /// Set field `index` without checking (see [`check`](Self::check)).
+    fn set(&mut self, index: usize, value: f64);
+    /// Every value finite and within its declared bounds, and the model's
+    /// conditions hold: positive mass, stiffness and frequency, boundaries in
+    /// order, static bound at least the kinetic levels.
+    fn check(&self) -> Result<(), ParamError>;
+
+    /// Index of a field by name.
+    fn index_of(name: &str) -> Option<usize> {
+        Self::NAMES.iter().position(|n| *n == name)
+    }
+
+    /// The defaults with the given values set, checked.
+    fn from_pairs(info: &ModelInfo, pairs: &[(&str, f64)]) -> Result<Self, ParamError> {
+        let mut p = Self::default();
+        for &(name, value) in pairs {
+            match Self::index_of(name) {
+                Some(i) => p.set(i, value),
+                None => return Err(unknown_or_fixed(info, name)),
+            }
+        }
+        p.check()?;
+        Ok(p)
+    }
+}
+
+fn unknown_or_fixed(info: &ModelInfo, name: &str) -> ParamError {
+    let free: Vec<&str> = info.free.iter().map(|&i| info.params[i].name).collect();
+    match info.params.iter().find(|p| p.name == name) {
+        Some(p) => ParamError::Fixed {
+            name: name.to_string(),
+            model: info.name.to_string(),
+            value: p.default,
+            free: free.join(", "),
+        },
+        None => ParamError::Unknown {
+            name: name.to_string(),
+            model: info.name.to_string(),
+            known: free.join(", "),
+        },
+    }
+}
+
+/// Finite values within their declared bounds (called by generated `check`).
+pub fn check_values<P: ParamSet>(p: &P, info: &ModelInfo) -> Result<(), ParamError> {
+    for (k, &i) in info.free.iter().enumerate() {
+        let pi = &info.params[i];
+        let value = p.get(k);
+        if !value.is_finite() {
+            return Err(ParamError::NotFinite {
+                name: pi.name.to_string(),
+                value,
+            });
+        }
+        for &(op, bound) in pi.bounds {
+            if !op.holds(value, bound) {
+                return Err(ParamError::OutOfRange {
+                    name: pi.name.to_string(),
+                    value,
+                    op: op.symbol(),
+                    bound,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Values derived from the parameters that the model needs to make sense.
+#[derive(Clone, Copy, Debug)]
+pub struct Conditions<'a> {
+    /// `m`.
+    pub mass: f64,
+    /// `c`.
+    pub stiffness: f64,
+    /// `W`.
+    pub frequency: f64,
+    /// Boundary velocities, in the model's order (lowest first).
+    pub velocities: &'a [f64],
+    /// `(as, f_above(V), f_below(V))` on the stick boundary.
+    pub stick: Option<(f64, f64, f64)>,
+}
+
+/// Check [`Conditions`] (called by generated `check`).
+pub fn check_conditions(info: &ModelInfo, c: Conditions) -> Result<(), ParamError> {
+    for (what, value) in [
+        ("mass", c.mass),
+        ("stiffness", c.stiffness),
+        ("forcing frequency", c.frequency),
+    ] {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(ParamError::NotPositive { what, value });
+        }
+    }
+    for (k, w) in c.velocities.windows(2).enumerate() {
+        if !(w[0] < w[1]) {
+            return Err(ParamError::BoundaryOrder {
+                lower: info.boundaries[k].label,
+                lower_v: w[0],
+                upper: info.boundaries[k + 1].label,
+                upper_v: w[1],
+            });
+        }
+    }
+    if let Some((bound, above, below)) = c.stick {
+        for (kinetic, side) in [(above.abs(), "above"), (below.abs(), "below")] {
+            if !(bound >= kinetic) {
+                return Err(ParamError::StaticBelowKinetic {
+                    bound,
+                    kinetic,
+                    side,
+                });
+            }
+        }
+    }
+    Ok(())
+}
