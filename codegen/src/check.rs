@@ -144,7 +144,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                             other.label
                         ),
                     );
-                    continue;
+                    // Kept, so that domains naming it get no second error.
                 }
                 if let Some(first) = boundaries.iter().find(|o| o.stick.is_some()) {
                     if b.stick.is_some() {
@@ -155,7 +155,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                                 first.label
                             ),
                         );
-                        continue;
+                        // Kept, so that domains naming it get no second error.
                     }
                 }
                 boundaries.push(Boundary {
@@ -561,10 +561,35 @@ fn check_affine(inst: &Instance, dm: &Domain, j: usize, diags: &mut Diagnostics)
 }
 
 fn is_affine(g: &mut Graph, id: crate::expr::Id) -> bool {
+    if has_kink_in_v(g, id) {
+        return false;
+    }
     match g.diff(id, LAW_V).and_then(|d1| g.diff(d1, LAW_V)) {
         Ok(d2) => g.as_const(d2) == Some(0.0),
         Err(_) => false,
     }
+}
+
+/// Whether `id` takes `abs` (or `sign`) of a term that depends on `v`. The
+/// second derivative of such a law folds to 0 (that of `sign` is 0), but the
+/// law is not one affine function of `v`: the flows, built from its value and
+/// slope at `v = 0`, would be wrong on the band.
+fn has_kink_in_v(g: &Graph, id: crate::expr::Id) -> bool {
+    let mut stack = vec![id];
+    let mut seen = std::collections::HashSet::new();
+    while let Some(i) = stack.pop() {
+        if !seen.insert(i) {
+            continue;
+        }
+        let node = g.node(i);
+        if let crate::expr::Node::Abs(a) | crate::expr::Node::Sign(a) = node {
+            if g.depends_on(a, LAW_V) {
+                return true;
+            }
+        }
+        stack.extend(crate::expr::children(node));
+    }
+    false
 }
 
 /// The smallest subterm of `e` that is not affine in `v`.
