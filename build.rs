@@ -61,8 +61,9 @@ fn main() {
                     .replace('"', "'");
                 writeln!(
                     modules,
-                    "#[doc = \"{doc}\"]\n#[allow(non_snake_case, clippy::excessive_precision, clippy::approx_constant)]\n\
-                     pub mod {name} {{ include!(concat!(env!(\"OUT_DIR\"), \"/models/{name}.rs\")); }}"
+                    "#[doc = \"{doc}\"]\n#[allow({lints})]\n\
+                     pub mod {name} {{ include!(concat!(env!(\"OUT_DIR\"), \"/models/{name}.rs\")); }}",
+                    lints = stickslip_codegen::MODULE_LINTS
                 )
                 .expect("write to String");
                 writeln!(

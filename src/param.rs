@@ -213,12 +213,12 @@ pub fn check_conditions(info: &ModelInfo, c: Conditions) -> Result<(), ParamErro
         ("stiffness", c.stiffness),
         ("forcing frequency", c.frequency),
     ] {
-        if !(value > 0.0 && value.is_finite()) {
+        if !value.is_finite() || value <= 0.0 {
             return Err(ParamError::NotPositive { what, value });
         }
     }
     for (k, w) in c.velocities.windows(2).enumerate() {
-        if !(w[0] < w[1]) {
+        if w[0].partial_cmp(&w[1]) != Some(std::cmp::Ordering::Less) {
             return Err(ParamError::BoundaryOrder {
                 lower: info.boundaries[k].label,
                 lower_v: w[0],
@@ -229,7 +229,7 @@ pub fn check_conditions(info: &ModelInfo, c: Conditions) -> Result<(), ParamErro
     }
     if let Some((bound, above, below)) = c.stick {
         for (kinetic, side) in [(above.abs(), "above"), (below.abs(), "below")] {
-            if !(bound >= kinetic) {
+            if bound.is_nan() || bound < kinetic {
                 return Err(ParamError::StaticBelowKinetic {
                     bound,
                     kinetic,

@@ -5,6 +5,8 @@
     non_snake_case,
     clippy::excessive_precision,
     clippy::approx_constant,
+    clippy::redundant_field_names,
+    clippy::single_match,
     dead_code
 )]
 mod snapshot {

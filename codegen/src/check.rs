@@ -716,7 +716,7 @@ fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
     for (j, sign, side) in [(above, 1.0, "above"), (below, -1.0, "below")] {
         let f = g.substitute(inst.domains[j].law, LAW_V, vk);
         let level = sign * g.eval(f, &defaults, &[]);
-        if !(s >= level.abs() - 1e-12 * (1.0 + level.abs())) {
+        if s.is_nan() || s < level.abs() - 1e-12 * (1.0 + level.abs()) {
             let e = b.stick.as_ref().expect("stick boundary");
             diags.error(
                 e.span(),

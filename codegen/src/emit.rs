@@ -222,7 +222,7 @@ fn straight_line(
             Node::Const(_) | Node::Param(_) | Node::Var(_) => continue,
             Node::Hom(kind, d, w2, tau) => {
                 let key = (d, w2, tau);
-                if !homs.contains_key(&key) {
+                if let std::collections::btree_map::Entry::Vacant(slot) = homs.entry(key) {
                     let (ec, es) = (
                         format_ident!("ec{}", counter),
                         format_ident!("es{}", counter),
@@ -230,7 +230,7 @@ fn straight_line(
                     counter += 1;
                     let call = w.hom_call(d, w2, tau);
                     stmts.extend(quote!(let (#ec, #es) = #call;));
-                    homs.insert(key, (ec, es));
+                    slot.insert((ec, es));
                 }
                 let (ec, es) = &homs[&key];
                 let name = match kind {
@@ -747,8 +747,8 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let nan2 = quote!([f64::NAN, f64::NAN]);
     let info_doc = doc1(&format!("Static description of `{display_name}`."));
     let type_doc =
-        if scene.is_some() {
-            let sc = &model.scenes[scene.expect("scene")];
+        if let Some(s) = scene {
+            let sc = &model.scenes[s];
             let mut lines = sc.docs.clone();
             lines.push(format!(
             "Scene `{}` of model `{}`: free parameters {}; the others are folded into constants.",

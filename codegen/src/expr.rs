@@ -135,8 +135,8 @@ impl Graph {
     pub fn add(&mut self, a: Id, b: Id) -> Id {
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => return self.constant(x + y),
-            (Some(z), _) if z == 0.0 => return b,
-            (_, Some(z)) if z == 0.0 => return a,
+            (Some(0.0), _) => return b,
+            (_, Some(0.0)) => return a,
             _ => {}
         }
         // x + (-x) = 0
@@ -163,10 +163,10 @@ impl Graph {
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => return self.constant(x * y),
             (Some(z), _) | (_, Some(z)) if z == 0.0 => return self.constant(0.0),
-            (Some(o), _) if o == 1.0 => return b,
-            (_, Some(o)) if o == 1.0 => return a,
-            (Some(m), _) if m == -1.0 => return self.neg(b),
-            (_, Some(m)) if m == -1.0 => return self.neg(a),
+            (Some(1.0), _) => return b,
+            (_, Some(1.0)) => return a,
+            (Some(-1.0), _) => return self.neg(b),
+            (_, Some(-1.0)) => return self.neg(a),
             _ => {}
         }
         // Signs move outwards: (-x) * y = -(x * y).

@@ -34,6 +34,11 @@ use proc_macro2::TokenStream;
 
 pub use diagnostic::{Diagnostic, Diagnostics};
 pub use emit::Options;
+
+/// Lints allowed on a generated module: parameter names keep the model's
+/// spelling (`V1`, `Q0`), folded constants keep every digit, and field or
+/// match shapes follow the model rather than style.
+pub const MODULE_LINTS: &str = "non_snake_case, clippy::excessive_precision, clippy::approx_constant, clippy::redundant_field_names, clippy::single_match";
 pub use model::Model;
 
 /// Parse and check a model from tokens.

@@ -180,7 +180,8 @@ fn parse_model_stream(
     let mut items = Vec::new();
     while !body.is_empty() {
         match parse_item(&body, diags) {
-            Ok(item) => items.push(item),
+            Ok(Some(item)) => items.push(item),
+            Ok(None) => {} // an error inside the item's braces, already recorded
             Err(e) => {
                 diags.push_syn(e);
                 skip_item(&body);
@@ -191,6 +192,27 @@ fn parse_model_stream(
         return Err(input.error("unexpected tokens after the model's closing brace"));
     }
     Ok(Some(ModelAst { docs, name, items }))
+}
+
+/// Run `f` on the inside of an item's braces. On error, the rest of the
+/// braces is dropped: syn would otherwise report the leftover tokens again
+/// ("unexpected token, expected `}`"), and the item ends at its closing
+/// brace, so the caller must not skip anything more.
+fn braced_body<T>(
+    body: ParseStream,
+    f: impl FnOnce(ParseStream) -> syn::Result<T>,
+) -> syn::Result<T> {
+    let result = f(body);
+    if result.is_err() {
+        let _ = body.step(|cursor| {
+            let mut rest = *cursor;
+            while let Some((_, next)) = rest.token_tree() {
+                rest = next;
+            }
+            Ok(((), rest))
+        });
+    }
+    result
 }
 
 /// Error recovery: drop tokens up to and including the next `;` or braced
@@ -210,7 +232,8 @@ fn skip_item(input: ParseStream) {
     });
 }
 
-fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> {
+/// `Ok(None)`: an error inside the item's braces, recorded in `diags`.
+fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option<Item>> {
     let attrs = input.call(Attribute::parse_outer)?;
     let docs = docs_of(&attrs, diags);
     let la = input.lookahead1();
@@ -244,38 +267,48 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
             bounds.push((op, value, span));
         }
         input.parse::<Token![;]>()?;
-        Ok(Item::Param(ParamAst {
+        Ok(Some(Item::Param(ParamAst {
             docs,
             name,
             default,
             bounds,
-        }))
+        })))
     } else if la.peek(Token![let]) {
         input.parse::<Token![let]>()?;
         let name: Ident = input.parse()?;
         input.parse::<Token![=]>()?;
         let value: Expr = input.parse()?;
         input.parse::<Token![;]>()?;
-        Ok(Item::Let(LetAst { docs, name, value }))
+        Ok(Some(Item::Let(LetAst { docs, name, value })))
     } else if la.peek(kw::oscillator) {
         let kw: kw::oscillator = input.parse()?;
         let body;
         braced!(body in input);
-        let mut fields = Vec::new();
-        while !body.is_empty() {
-            let key: Ident = body.parse()?;
-            body.parse::<Token![:]>()?;
-            let value: Expr = body.parse()?;
-            fields.push((key, value));
-            if body.is_empty() {
-                break;
+        let fields = braced_body(&body, |body| {
+            let mut fields = Vec::new();
+            while !body.is_empty() {
+                let key: Ident = body.parse()?;
+                body.parse::<Token![:]>()?;
+                let value: Expr = body.parse()?;
+                fields.push((key, value));
+                if body.is_empty() {
+                    break;
+                }
+                body.parse::<Token![,]>()?;
             }
-            body.parse::<Token![,]>()?;
-        }
-        Ok(Item::Oscillator(OscillatorAst {
+            Ok(fields)
+        });
+        let fields = match fields {
+            Ok(f) => f,
+            Err(e) => {
+                diags.push_syn(e);
+                return Ok(None);
+            }
+        };
+        Ok(Some(Item::Oscillator(OscillatorAst {
             span: kw.span,
             fields,
-        }))
+        })))
     } else if la.peek(kw::boundary) {
         input.parse::<kw::boundary>()?;
         let label: Ident = input.parse()?;
@@ -295,12 +328,12 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
             stick = Some(input.parse::<Expr>()?);
         }
         input.parse::<Token![;]>()?;
-        Ok(Item::Boundary(BoundaryAst {
+        Ok(Some(Item::Boundary(BoundaryAst {
             docs,
             label,
             velocity,
             stick,
-        }))
+        })))
     } else if la.peek(kw::domain) {
         input.parse::<kw::domain>()?;
         let label: LitInt = input.parse()?;
@@ -309,53 +342,62 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Item> 
         input.parse::<Token![=>]>()?;
         let law: Expr = input.parse()?;
         input.parse::<Token![;]>()?;
-        Ok(Item::Domain(DomainAst {
+        Ok(Some(Item::Domain(DomainAst {
             docs,
             label,
             band,
             law,
-        }))
+        })))
     } else if la.peek(kw::scene) {
         input.parse::<kw::scene>()?;
         let name: Ident = input.parse()?;
         let body;
         braced!(body in input);
-        let mut free = Vec::new();
-        let mut structures = Vec::new();
-        while !body.is_empty() {
-            if body.peek(kw::free) {
-                body.parse::<kw::free>()?;
-                body.parse::<Token![:]>()?;
-                loop {
-                    free.push(body.parse::<Ident>()?);
-                    if !body.peek(Token![,]) {
-                        break;
+        let parsed = braced_body(&body, |body| {
+            let mut free = Vec::new();
+            let mut structures = Vec::new();
+            while !body.is_empty() {
+                if body.peek(kw::free) {
+                    body.parse::<kw::free>()?;
+                    body.parse::<Token![:]>()?;
+                    loop {
+                        free.push(body.parse::<Ident>()?);
+                        if !body.peek(Token![,]) {
+                            break;
+                        }
+                        body.parse::<Token![,]>()?;
                     }
-                    body.parse::<Token![,]>()?;
-                }
-            } else if body.peek(kw::structures) {
-                body.parse::<kw::structures>()?;
-                body.parse::<Token![:]>()?;
-                loop {
-                    structures.push(body.parse::<LitStr>()?);
-                    if !body.peek(Token![,]) {
-                        break;
+                } else if body.peek(kw::structures) {
+                    body.parse::<kw::structures>()?;
+                    body.parse::<Token![:]>()?;
+                    loop {
+                        structures.push(body.parse::<LitStr>()?);
+                        if !body.peek(Token![,]) {
+                            break;
+                        }
+                        body.parse::<Token![,]>()?;
                     }
-                    body.parse::<Token![,]>()?;
+                } else {
+                    return Err(body
+                        .error("expected `free: NAMES;` or `structures: \"..\", ..;` in a scene"));
                 }
-            } else {
-                return Err(
-                    body.error("expected `free: NAMES;` or `structures: \"..\", ..;` in a scene")
-                );
+                body.parse::<Token![;]>()?;
             }
-            body.parse::<Token![;]>()?;
-        }
-        Ok(Item::Scene(SceneAst {
+            Ok((free, structures))
+        });
+        let (free, structures) = match parsed {
+            Ok(p) => p,
+            Err(e) => {
+                diags.push_syn(e);
+                return Ok(None);
+            }
+        };
+        Ok(Some(Item::Scene(SceneAst {
             docs,
             name,
             free,
             structures,
-        }))
+        })))
     } else {
         Err(la.error())
     }

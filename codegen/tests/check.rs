@@ -264,6 +264,23 @@ fn syntax_errors_in_several_items_are_all_reported() {
 }
 
 #[test]
+fn syntax_error_inside_the_oscillator_is_reported_once() {
+    let src = with(&[("damping: d,", "damping d,")]);
+    assert_error(&src, "20:17", &["expected `:`"]);
+}
+
+#[test]
+fn syntax_error_inside_braces_does_not_hide_the_next_item() {
+    // The scene ends at its closing brace: the next item is parsed, and its
+    // missing `;` (seen at the model's closing brace) is reported too.
+    let src = with_scene("    scene s {\n        free W;\n    }\n    param zz = 1.0\n");
+    let errs = errors(&src);
+    assert_eq!(errs.len(), 2, "{errs:#?}");
+    assert_has(&errs, "33:14", &["expected `:`"]);
+    assert_has(&errs, "36:1", &["expected `;`"]);
+}
+
+#[test]
 fn unknown_item_keyword() {
     let src = with(&[("param V = 3.0;", "parm V = 3.0;")]);
     assert_error(&src, "5:5", &["expected one of"]);

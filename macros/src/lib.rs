@@ -95,8 +95,11 @@ fn expand(input: TokenStream, as_source: bool) -> Tokens {
             const _: &[u8] = include_bytes!(#p);
         )
     });
+    let lints: Tokens = stickslip_codegen::MODULE_LINTS
+        .parse()
+        .expect("lint list tokenizes");
     quote! {
-        #[allow(non_snake_case, clippy::excessive_precision, clippy::approx_constant)]
+        #[allow(#lints)]
         pub mod #name {
             #track
             #body
