@@ -257,11 +257,12 @@ impl ModelInfo {
         out
     }
 
-    /// Index of the mapping `name` (for the stick mapping, the one leaving to `exit`).
+    /// Index of the mapping `name`; for the stick mapping, the one leaving to
+    /// `exit` (the first of the two when `exit` is `None`).
     pub fn mapping_index(&self, name: &str, exit: Option<Side>) -> Option<usize> {
         self.mappings
             .iter()
-            .position(|m| m.name == name && (m.exit.is_none() || m.exit == exit))
+            .position(|m| m.name == name && (exit.is_none() || m.exit.is_none() || m.exit == exit))
     }
 }
 

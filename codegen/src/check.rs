@@ -195,6 +195,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         .enumerate()
         .map(|(i, b)| (b.label.clone(), i))
         .collect();
+    let declared_domains = domain_asts.len();
     let mut domains: Vec<Domain> = Vec::new();
     for d in domain_asts {
         let label = match d.label.base10_parse::<u32>() {
@@ -247,54 +248,59 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         scenes: Vec::new(),
         mappings: Vec::new(),
     };
-    if diags.len() > errors_before {
-        return None;
-    }
+    // From here on every check runs even when an earlier one failed, so that
+    // all of a file's errors are reported at once; a check is skipped only
+    // where an earlier error would make it report nonsense.
+    let domains_complete = model.domains.len() == declared_domains;
 
     // Lower everything once with all parameters symbolic: this reports unknown
     // names and divisions by zero, and gives the symbolic checks their graph.
     let all: Vec<usize> = (0..model.params.len()).collect();
+    let before_lowering = diags.len();
     let symbolic = lower_instance(&model, &all, diags);
-    if diags.len() > errors_before {
-        return None;
-    }
+    let lowered = diags.len() == before_lowering;
 
     check_positive(&model, &symbolic, diags);
-    sort_boundaries(&mut model, &symbolic, diags);
-    if diags.len() > errors_before {
-        return None;
-    }
-    check_bands(&mut model, ast.name.span(), diags);
-    if diags.len() > errors_before {
-        return None;
-    }
-    // Boundaries and domains are now sorted: lower again in that order.
-    let symbolic = lower_instance(&model, &all, &mut Diagnostics::new());
+    let before_affine = diags.len();
     for (j, dm) in model.domains.iter().enumerate() {
         check_affine(&symbolic, dm, j, diags);
     }
-    if diags.len() > errors_before {
+    let affine = diags.len() == before_affine;
+
+    let before_bands = diags.len();
+    sort_boundaries(&mut model, &symbolic, diags);
+    if domains_complete && diags.len() == before_bands {
+        check_bands(&mut model, ast.name.span(), diags);
+    }
+    let tiled = domains_complete && diags.len() == before_bands;
+    if !tiled {
         return None;
     }
-    check_continuity(&model, &symbolic, diags);
-    check_static_bound(&model, &symbolic, diags);
+    if lowered && affine {
+        // Boundaries and domains are now sorted: lower again in that order.
+        let symbolic = lower_instance(&model, &all, &mut Diagnostics::new());
+        check_continuity(&model, &symbolic, diags);
+        check_static_bound(&model, &symbolic, diags);
+    }
 
     model.mappings = Model::topology_mappings(&model.boundaries, &model.domains);
     model.scenes = scene_asts
         .into_iter()
         .filter_map(|s| check_scene(&model, s, diags))
         .collect();
-    for scene in &model.scenes {
-        let mut scratch = Diagnostics::new();
-        lower_instance(&model, &scene.free, &mut scratch);
-        for d in scratch.iter() {
-            diags.error(
-                d.span,
-                format!(
-                    "with the parameters of scene `{}` fixed: {}",
-                    scene.name, d.message
-                ),
-            );
+    if lowered {
+        for scene in &model.scenes {
+            let mut scratch = Diagnostics::new();
+            lower_instance(&model, &scene.free, &mut scratch);
+            for d in scratch.iter() {
+                diags.error(
+                    d.span,
+                    format!(
+                        "with the parameters of scene `{}` fixed: {}",
+                        scene.name, d.message
+                    ),
+                );
+            }
         }
     }
     if diags.len() > errors_before {
