@@ -46,6 +46,11 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
     let mut domain_asts = Vec::new();
     let mut scene_asts = Vec::new();
     let empty = HashMap::new();
+    // Whether every default is a number, and every boundary was accepted:
+    // the checks at the defaults (signs, order of the boundaries, bands,
+    // static bound) would report nonsense otherwise.
+    let mut defaults_ok = true;
+    let mut boundaries_ok = true;
 
     let mut declare = |name: &syn::Ident, diags: &mut Diagnostics| -> bool {
         let s = name.to_string();
@@ -77,6 +82,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                 }
                 let ctx = format!("the default of `{}`", p.name);
                 let default = constant(&p.default, &empty, &ctx, diags);
+                defaults_ok &= default.is_some();
                 let mut bounds = Vec::new();
                 for (op, e, span) in &p.bounds {
                     let ctx = format!("a bound of `{}`", p.name);
@@ -130,6 +136,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                     .collect();
                 let digits: String = digits.chars().rev().collect();
                 let Ok(number) = digits.parse::<u32>() else {
+                    boundaries_ok = false;
                     diags.error(
                         b.label.span(),
                         format!("boundary label `{label}` must end in its number, e.g. `Sigma1`"),
@@ -137,6 +144,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                     continue;
                 };
                 if let Some(other) = boundaries.iter().find(|o| o.number == number) {
+                    boundaries_ok = false;
                     diags.error(
                         b.label.span(),
                         format!(
@@ -148,6 +156,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                 }
                 if let Some(first) = boundaries.iter().find(|o| o.stick.is_some()) {
                     if b.stick.is_some() {
+                        boundaries_ok = false;
                         diags.error(
                             b.label.span(),
                             format!(
@@ -260,19 +269,25 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
     let symbolic = lower_instance(&model, &all, diags);
     let lowered = diags.len() == before_lowering;
 
-    check_positive(&model, &symbolic, diags);
+    if lowered && defaults_ok {
+        check_positive(&model, &symbolic, diags);
+    }
     let before_affine = diags.len();
     for (j, dm) in model.domains.iter().enumerate() {
         check_affine(&symbolic, dm, j, diags);
     }
     let affine = diags.len() == before_affine;
 
+    // The order of the boundaries is that of their velocities at the defaults.
+    let ordered = lowered && defaults_ok && boundaries_ok;
     let before_bands = diags.len();
-    sort_boundaries(&mut model, &symbolic, diags);
-    if domains_complete && diags.len() == before_bands {
+    if ordered {
+        sort_boundaries(&mut model, &symbolic, diags);
+    }
+    if ordered && domains_complete && diags.len() == before_bands {
         check_bands(&mut model, ast.name.span(), diags);
     }
-    let tiled = domains_complete && diags.len() == before_bands;
+    let tiled = ordered && domains_complete && diags.len() == before_bands;
     if !tiled {
         return None;
     }

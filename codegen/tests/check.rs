@@ -349,30 +349,30 @@ fn unknown_function() {
 
 #[test]
 fn duplicate_param() {
-    let src = with(&[("param mu4 = 0.5;", "param mu3 = 0.5;")]);
+    let src = with(&[("param mu4 = 0.5;", "param mu4 = 0.5; param mu3 = 0.7;")]);
     assert_error(
         &src,
-        "13:11",
+        "13:28",
         &["`mu3` is defined twice (first at line 12, column 11)"],
     );
 }
 
 #[test]
 fn let_reusing_a_param_name() {
-    let src = with(&[("let FN = m * g;", "let g = m * 9.8;")]);
+    let src = with(&[("let FN = m * g;", "let FN = m * g; let g = 1.0;")]);
     assert_error(
         &src,
-        "17:9",
+        "17:25",
         &["`g` is defined twice (first at line 14, column 11)"],
     );
 }
 
 #[test]
 fn param_named_v() {
-    let src = with(&[("param V = 3.0;", "param v = 3.0;")]);
+    let src = with(&[("param V = 3.0;", "param V = 3.0; param v = 1.0;")]);
     assert_error(
         &src,
-        "5:11",
+        "5:26",
         &["`v` is the velocity and cannot be redefined"],
     );
 }
@@ -887,11 +887,29 @@ fn default_that_is_not_finite() {
 
 #[test]
 fn default_violating_its_lower_bound() {
-    let src = with(&[("param m = 5.0, > 0;", "param m = -1.0, > 0;")]);
+    let src = with(&[("param d = 0.1, >= 0;", "param d = -0.1, >= 0;")]);
     assert_error(
         &src,
+        "3:21",
+        &["the default -0.1 of `d` violates its bound >= 0"],
+    );
+}
+
+#[test]
+fn mass_default_violating_its_bound_is_also_a_non_positive_mass() {
+    // The default is a number, so the checks at the defaults still run.
+    let src = with(&[("param m = 5.0, > 0;", "param m = -1.0, > 0;")]);
+    let errs = errors(&src);
+    assert_eq!(errs.len(), 2, "{errs:#?}");
+    assert_has(
+        &errs,
         "2:21",
         &["the default -1 of `m` violates its bound > 0"],
+    );
+    assert_has(
+        &errs,
+        "19:15",
+        &["the mass `m` is -1 at the defaults; it must be positive"],
     );
 }
 
@@ -1004,43 +1022,120 @@ fn scene_with_an_unknown_entry() {
 #[test]
 fn several_errors_are_reported_at_once() {
     let src = with(&[
-        ("param m = 5.0, > 0;", "param m = -1.0, > 0;"),
-        ("param mu4 = 0.5;", "param mu3 = 0.5;"),
+        ("param d = 0.1, >= 0;", "param d = -0.1, >= 0;"),
+        ("param mu4 = 0.5;", "param mu4 = 0.5; param mu3 = 0.7;"),
         ("damping: d,", "damping: d, spring: c,"),
-        ("domain 4:", "domain 3:"),
-        (
-            "boundary Sigma2: v = V1;",
-            "boundary Sigma2: v = V1, stick mus;",
-        ),
+        ("(-mu2 * (v - V) + FN * muk)", "(-mu5 * (v - V) + FN * muk)"),
+        ("(-mu3 * (v - V) - FN * muk)", "(-mu3 * (v * v) - FN * muk)"),
     ]);
     let report = generate(&src).unwrap_err();
     assert!(report.ends_with("\n5 errors in test.ssm\n"), "{report}");
     let errs = errors(&src);
-    let locations: Vec<&str> = errs.iter().map(|(_, l)| l.as_str()).collect();
-    // In source order: the checker reads the items top to bottom.
+    let mut locations: Vec<&str> = errs.iter().map(|(_, l)| l.as_str()).collect();
+    locations.sort_by_key(|l| {
+        let mut it = l.rsplit(':').map(|n| n.parse::<u32>().unwrap_or(0));
+        let col = it.next().unwrap_or(0);
+        (it.next().unwrap_or(0), col)
+    });
     assert_eq!(
         locations,
         [
-            "test.ssm:2:21",
-            "test.ssm:13:11",
+            "test.ssm:3:21",
+            "test.ssm:13:28",
             "test.ssm:20:21",
-            "test.ssm:26:14",
-            "test.ssm:31:12",
+            "test.ssm:29:40",
+            "test.ssm:30:47",
         ]
     );
     assert_has(
         &errs,
-        "2:21",
-        &["the default -1 of `m` violates its bound > 0"],
+        "3:21",
+        &["the default -0.1 of `d` violates its bound >= 0"],
     );
-    assert_has(&errs, "13:11", &["`mu3` is defined twice"]);
+    assert_has(&errs, "13:28", &["`mu3` is defined twice"]);
     assert_has(&errs, "20:21", &["unknown oscillator field `spring`"]);
+    assert_has(
+        &errs,
+        "29:40",
+        &["unknown name `mu5` in the friction law of domain 1"],
+    );
+    assert_has(
+        &errs,
+        "30:47",
+        &["domain 3 is not affine in `v`: the term `v * v`"],
+    );
+}
+
+#[test]
+fn non_affine_law_and_gap_are_reported_together() {
+    let src = with(&[
+        ("(-mu2 * (v - V) + FN * muk)", "(-mu2 * (v * v) + FN * muk)"),
+        (
+            "    domain 4: v < Sigma3 => (mu4 * (v - V2) - mu3 * (V2 - V) - FN * muk) / m;\n",
+            "",
+        ),
+    ]);
+    let errs = errors(&src);
+    assert_eq!(errs.len(), 2, "{errs:#?}");
+    assert_has(&errs, "29:47", &["the term `v * v` is nonlinear"]);
+    assert_has(
+        &errs,
+        "27:14",
+        &["gap: no domain covers the band v < Sigma3"],
+    );
+}
+
+#[test]
+fn first_phase_errors_are_all_reported() {
+    let src = with(&[
+        ("param mu4 = 0.5;", "param mu4 = 0.5; param mu3 = 0.7;"),
+        (
+            "boundary Sigma2: v = V1;",
+            "boundary Sigma2: v = V1, stick mus;",
+        ),
+        ("domain 4:", "domain 3:"),
+    ]);
+    let errs = errors(&src);
+    assert_eq!(errs.len(), 3, "{errs:#?}");
+    assert_has(&errs, "13:28", &["`mu3` is defined twice"]);
     assert_has(
         &errs,
         "26:14",
         &["only one boundary can carry static friction"],
     );
     assert_has(&errs, "31:12", &["domain 3 is declared twice"]);
+}
+
+// An error that leaves a placeholder (a default, a name, a boundary) must not
+// be followed by errors computed from that placeholder.
+
+#[test]
+fn unknown_name_in_the_mass_is_not_also_a_zero_mass() {
+    let src = with(&[("mass: m,", "mass: mm,")]);
+    assert_error(&src, "19:15", &["unknown name `mm` in the mass"]);
+}
+
+#[test]
+fn unknown_name_in_a_boundary_velocity_does_not_reorder_the_bands() {
+    let src = with(&[("boundary Sigma2: v = V1;", "boundary Sigma2: v = V9;")]);
+    assert_error(
+        &src,
+        "26:26",
+        &["unknown name `V9` in the velocity of Sigma2"],
+    );
+}
+
+#[test]
+fn division_by_zero_in_a_boundary_velocity_does_not_reorder_the_bands() {
+    let src = with(&[(
+        "boundary Sigma2: v = V1;",
+        "boundary Sigma2: v = V1 / (m - m);",
+    )]);
+    assert_error(
+        &src,
+        "26:31",
+        &["division by zero: `(m - m)` is the constant 0 in the velocity of Sigma2"],
+    );
 }
 
 #[test]
