@@ -16,11 +16,19 @@ extern crate self as stickslip;
 
 pub use nalgebra;
 
+pub mod admissible;
+pub mod attractor;
+pub mod crossing;
 pub mod describe;
 pub mod homogeneous;
 pub mod model;
 pub mod models;
+pub mod motion;
 pub mod param;
+pub mod periodic;
+pub mod simulate;
+pub mod stability;
+pub mod structure;
 
 pub use model::{
     BoundaryInfo, Coefficients, DomainInfo, MappingEval, MappingInfo, MappingKind, Model,

@@ -1,0 +1,300 @@
+//! Steady states found by simulation: the attractor's mapping structure and
+//! period, refined by Newton; or "no motion" (NM) certified by a bound.
+
+use serde::Serialize;
+
+use crate::model::{MappingKind, Model, Side};
+use crate::motion::{solve, Motion, OrbitError};
+use crate::periodic::{NewtonOptions, SwitchingPoint};
+use crate::simulate::{Event, EventKind, Location, Segment, Simulator};
+use crate::structure::Structure;
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+/// Limits of the search for a steady state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AttractorOptions {
+    /// Forcing periods simulated at most.
+    pub max_periods: u32,
+    /// Longest cycle, in mappings, looked for.
+    pub max_cycle: usize,
+    /// Newton's options for the refinement.
+    pub newton: NewtonOptions,
+}
+
+impl Default for AttractorOptions {
+    fn default() -> Self {
+        Self {
+            max_periods: 3000,
+            max_cycle: 48,
+            newton: NewtonOptions::default(),
+        }
+    }
+}
+
+/// No boundary contact, proved: the motion stays in one domain forever.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct NoMotion {
+    /// The domain (index).
+    pub domain: usize,
+    /// Largest velocity of the steady (forced) response.
+    pub max_v: f64,
+    /// Smallest velocity of the steady response.
+    pub min_v: f64,
+    /// Phase at which the certificate was established.
+    pub certified_at: f64,
+}
+
+/// What a simulation settles to.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Attractor {
+    /// A periodic motion, refined and checked.
+    Periodic(Motion),
+    /// No boundary contact.
+    NoMotion(NoMotion),
+}
+
+/// The mapping that the segment between two events follows.
+pub fn mapping_between<M: Model>(before: &Event, after: &Event) -> Option<usize> {
+    let info = M::INFO;
+    match before.after {
+        Location::Domain(j) => info.mappings.iter().position(|m| {
+            m.domain == Some(j) && m.from == before.boundary && m.to == after.boundary
+        }),
+        Location::Stick => {
+            let side = match after.after {
+                Location::Domain(j) if info.domains[j].lower == Some(after.boundary) => Side::Above,
+                _ => Side::Below,
+            };
+            info.mappings
+                .iter()
+                .position(|m| m.kind == MappingKind::Stick && m.exit == Some(side))
+        }
+    }
+}
+
+/// Certificate that the motion in domain `j` from `(x, v, phase)` never
+/// reaches the domain's boundaries: the forced response plus a bound on the
+/// decaying homogeneous part stays strictly inside the band.
+pub fn no_motion_certificate<M: Model>(
+    sim: &Simulator<M>,
+    j: usize,
+    x: f64,
+    v: f64,
+    phase: f64,
+) -> Option<NoMotion> {
+    let p = sim.params();
+    let co = M::coefficients(p, j);
+    let osc = sim.oscillator();
+    let d = 0.5 * co.two_d;
+    let c = co.c;
+    if !(d > 0.0) {
+        return None;
+    }
+    let w = osc.frequency;
+    let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
+    let a = osc.amplitude * (c - w * w) / den;
+    let b = 2.0 * d * w * osc.amplitude / den;
+    let xp = a * phase.cos() + b * phase.sin() - co.b / c;
+    let vp = w * (-a * phase.sin() + b * phase.cos());
+    let (x0, y0) = (x - xp, v - vp);
+    let w2 = d * d - c;
+    let s = if w2 < 0.0 {
+        (1.0 / (-w2).sqrt()).min(1.0 / (std::f64::consts::E * d))
+    } else if w2 > 0.0 {
+        1.0 / (std::f64::consts::E * (d - w2.sqrt()))
+    } else {
+        1.0 / (std::f64::consts::E * d)
+    };
+    let h = y0.abs() + (c * x0 + d * y0).abs() * s;
+    let amplitude = w * a.hypot(b);
+    let dom = M::INFO.domains[j];
+    let hi_ok = dom.upper.is_none_or(|k| amplitude + h < sim.velocity(k));
+    let lo_ok = dom.lower.is_none_or(|k| -amplitude - h > sim.velocity(k));
+    (hi_ok && lo_ok && h.is_finite()).then_some(NoMotion {
+        domain: j,
+        max_v: amplitude,
+        min_v: -amplitude,
+        certified_at: phase,
+    })
+}
+
+/// The smallest cycle at the end of `events`: `(m events, N periods)`.
+fn detect_cycle(events: &[Event], max_cycle: usize) -> Option<(usize, u32)> {
+    let n = events.len();
+    'len: for m in 1..=max_cycle {
+        if n < 2 * m + 1 {
+            return None;
+        }
+        let mut shift = None;
+        for i in 0..=m {
+            let (a, b) = (&events[n - 1 - i], &events[n - 1 - i - m]);
+            if a.boundary != b.boundary
+                || a.kind != b.kind
+                || a.before != b.before
+                || a.after != b.after
+            {
+                continue 'len;
+            }
+            let ds = a.phase - b.phase;
+            let scale = 1.0 + a.x.abs().max(b.x.abs());
+            if (a.x - b.x).abs() > 1e-7 * scale {
+                continue 'len;
+            }
+            match shift {
+                None => shift = Some(ds),
+                Some(s) if (ds - s).abs() > 1e-7 * s.abs().max(1.0) => continue 'len,
+                _ => {}
+            }
+        }
+        let s = shift?;
+        let periods = (s / TAU).round();
+        if periods >= 1.0 && (s - periods * TAU).abs() < 1e-6 * s.max(1.0) {
+            return Some((m, periods as u32));
+        }
+    }
+    None
+}
+
+/// Simulate from `start` until the motion settles; name and refine it.
+pub fn find<M: Model>(
+    sim: &Simulator<M>,
+    start: Segment,
+    opts: AttractorOptions,
+) -> Result<Attractor, OrbitError> {
+    let info = M::INFO;
+    let mut seg = start;
+    let mut events: Vec<Event> = Vec::with_capacity(4 * opts.max_cycle + 8);
+    let keep = 4 * opts.max_cycle + 4;
+    let chunk = 10.0 * TAU;
+    let mut phase = start.phase;
+    let end = start.phase + opts.max_periods as f64 * TAU;
+    while phase < end {
+        phase += chunk;
+        let mut count = 0usize;
+        seg = sim.run(seg, phase, |e| {
+            if e.kind != EventKind::Graze {
+                events.push(*e);
+                count += 1;
+            }
+        })?;
+        if events.len() > keep {
+            events.drain(..events.len() - keep);
+        }
+        if count == 0 {
+            if let Location::Domain(j) = seg.location {
+                let (x, v) = sim.state_at(&seg, phase);
+                if let Some(nm) = no_motion_certificate(sim, j, x, v, phase) {
+                    return Ok(Attractor::NoMotion(nm));
+                }
+            }
+            continue;
+        }
+        let Some((m, periods)) = detect_cycle(&events, opts.max_cycle) else {
+            continue;
+        };
+        let n = events.len();
+        let window = &events[n - 1 - m..];
+        let mut steps = Vec::with_capacity(m);
+        let mut points = Vec::with_capacity(m);
+        for i in 0..m {
+            let idx = mapping_between::<M>(&window[i], &window[i + 1]).ok_or_else(|| {
+                OrbitError::Guess(format!(
+                    "the simulated motion uses a mapping that `{}` does not generate (after the event at W t = {})",
+                    info.name, window[i].phase
+                ))
+            })?;
+            steps.push(idx);
+            points.push(SwitchingPoint {
+                phase: window[i].phase,
+                x: window[i].x,
+            });
+        }
+        let structure = Structure::from_indices(info, &steps, periods)?;
+        let (canonical, offset) = structure.canonical(info);
+        // Points past the window's end are the window's first ones, one cycle later.
+        let cycle = TAU * periods as f64;
+        let rotated: Vec<SwitchingPoint> = (0..m)
+            .map(|k| {
+                let pt = points[(offset + k) % m];
+                let later = if offset + k >= m { cycle } else { 0.0 };
+                SwitchingPoint {
+                    phase: pt.phase + later,
+                    x: pt.x,
+                }
+            })
+            .collect();
+        let motion = solve(sim, canonical, rotated, opts.newton);
+        if motion.is_admissible() {
+            return Ok(Attractor::Periodic(motion));
+        }
+        if phase + chunk >= end {
+            return motion.into_result().map(Attractor::Periodic);
+        }
+    }
+    Err(OrbitError::Unsettled {
+        periods: opts.max_periods,
+    })
+}
+
+/// Seed `structure` by simulation: from rest and from a few other starts,
+/// look for a stretch of the simulated event sequence that follows the
+/// structure, and return its switching points.
+pub fn seed<M: Model>(sim: &Simulator<M>, structure: &Structure) -> Option<Vec<SwitchingPoint>> {
+    let m = structure.len();
+    let starts = [
+        (0.0, 0.0),
+        (0.5, 1.0),
+        (-0.5, 2.0),
+        (1.0, -1.0),
+        (-1.0, 4.0),
+        (2.0, 0.0),
+    ];
+    for &(x0, v0) in &starts {
+        for k in 0..4 {
+            let phase0 = k as f64 * 0.25 * TAU;
+            let Ok(seg) = sim.start(x0, v0, phase0) else {
+                continue;
+            };
+            let mut events = Vec::new();
+            if sim
+                .run(seg, phase0 + 200.0 * TAU, |e| {
+                    if e.kind != EventKind::Graze {
+                        events.push(*e)
+                    }
+                })
+                .is_err()
+            {
+                continue;
+            }
+            let maps: Vec<Option<usize>> = events
+                .windows(2)
+                .map(|w| mapping_between::<M>(&w[0], &w[1]))
+                .collect();
+            // Latest window matching the structure (the transient has decayed most there).
+            for s in (0..maps.len().saturating_sub(m - 1)).rev() {
+                for r in 0..m {
+                    let ok = (0..m).all(|i| maps[s + i] == Some(structure.steps()[(r + i) % m]));
+                    if ok {
+                        // Event s + i starts mapping (r + i) mod m; mappings before r
+                        // are taken one cycle earlier so that the phases increase.
+                        let shift = TAU * structure.periods() as f64;
+                        return Some(
+                            (0..m)
+                                .map(|k| {
+                                    let e = &events[s + (k + m - r) % m];
+                                    let back = if k < r { shift } else { 0.0 };
+                                    SwitchingPoint {
+                                        phase: e.phase - back,
+                                        x: e.x,
+                                    }
+                                })
+                                .collect(),
+                        );
+                    }
+                }
+            }
+        }
+    }
+    None
+}

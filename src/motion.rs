@@ -1,0 +1,126 @@
+//! A periodic motion: a structure, its switching points solved by Newton,
+//! checked for admissibility, with its stability.
+
+use nalgebra::Matrix2;
+
+use crate::admissible::{violations, Violation};
+use crate::model::Model;
+use crate::param::ParamError;
+use crate::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
+use crate::simulate::{SimError, Simulator};
+use crate::stability::Stability;
+use crate::structure::{Structure, StructureError};
+
+/// A solution of the mapping equations of a structure, with everything known about it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Motion {
+    /// The structure (applied from its first mapping).
+    pub structure: Structure,
+    /// Point `k` is the start of the `k`-th mapping applied.
+    pub points: Vec<SwitchingPoint>,
+    /// How Newton ended.
+    pub termination: Termination,
+    /// `DP` in `(W t, x)` order, when it exists.
+    pub dp: Option<Matrix2<f64>>,
+    /// Eigenvalues and classification, when `DP` exists.
+    pub stability: Option<Stability>,
+    /// Violated admissibility conditions (empty for a real motion).
+    pub violations: Vec<Violation>,
+}
+
+impl Motion {
+    /// Converged and admissible: a real motion.
+    pub fn is_admissible(&self) -> bool {
+        self.termination.converged() && self.violations.is_empty()
+    }
+
+    /// The motion if it is real, else why not.
+    pub fn into_result(self) -> Result<Motion, OrbitError> {
+        if !self.termination.converged() {
+            return Err(OrbitError::NotConverged(self.termination));
+        }
+        if !self.violations.is_empty() {
+            return Err(OrbitError::Inadmissible(Box::new(self)));
+        }
+        Ok(self)
+    }
+}
+
+/// Why no periodic motion was found.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum OrbitError {
+    /// Invalid parameters.
+    #[error(transparent)]
+    Params(#[from] ParamError),
+    /// Invalid structure.
+    #[error(transparent)]
+    Structure(#[from] StructureError),
+    /// The simulation failed.
+    #[error(transparent)]
+    Simulation(#[from] SimError),
+    /// A guess with the wrong number of points, or not finite.
+    #[error("bad initial guess: {0}")]
+    Guess(String),
+    /// Newton did not converge (or hit a singular Jacobian).
+    #[error("Newton did not converge: {0:?}")]
+    NotConverged(Termination),
+    /// Newton converged to a solution that is not a motion.
+    #[error("the solution is not a motion: {}", describe_violations(&.0.violations))]
+    Inadmissible(Box<Motion>),
+    /// The simulation did not settle to a periodic motion or a certified NM.
+    #[error("no periodic motion and no certified NM within {periods} forcing periods")]
+    Unsettled {
+        /// Forcing periods simulated.
+        periods: u32,
+    },
+    /// No simulation went through the structure, so there is no guess.
+    #[error("no simulated motion follows {0}; give a guess")]
+    NoSeed(String),
+}
+
+fn describe_violations(v: &[Violation]) -> String {
+    v.iter()
+        .map(|v| {
+            format!(
+                "segment {}: {} (margin {:.3e})",
+                v.segment, v.condition, v.margin
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// Solve `structure` from `guess` and check the result (never fails: the
+/// outcome says what happened).
+pub fn solve<M: Model>(
+    sim: &Simulator<M>,
+    structure: Structure,
+    mut points: Vec<SwitchingPoint>,
+    opts: NewtonOptions,
+) -> Motion {
+    let mut solver = PeriodicSolver::<M>::new(structure);
+    let termination = solver.solve(sim.params(), &mut points, opts);
+    // Phase origin: 0 <= W t_0 < 2π.
+    let shift =
+        (points[0].phase / (2.0 * std::f64::consts::PI)).floor() * 2.0 * std::f64::consts::PI;
+    if shift.is_finite() && shift != 0.0 {
+        for pt in &mut points {
+            pt.phase -= shift;
+        }
+    }
+    let (dp, stability, violations) = if termination.converged() {
+        let dp = solver.poincare_jacobian(sim.params(), &points).ok();
+        let st = dp.as_ref().map(Stability::of);
+        (dp, st, violations(sim, solver.structure(), &points))
+    } else {
+        (None, None, Vec::new())
+    };
+    Motion {
+        structure: solver.structure().clone(),
+        points,
+        termination,
+        dp,
+        stability,
+        violations,
+    }
+}

@@ -1,0 +1,320 @@
+//! Periodic motions of a given mapping structure by Newton's method (SPEC §6).
+//!
+//! The unknowns are the switching points `(x_k, W t_k)`, `k = 0..m`, with
+//! periodicity `x_m = x_0`, `W t_m = W t_0 + 2πN` substituted, so that the
+//! 2m+2 equations of SPEC §6 become 2m equations in 2m unknowns. Their
+//! Jacobian is block-cyclic-bidiagonal — block row `k` holds `∂f_k/∂u_k` and
+//! `∂f_k/∂u_{k+1}` — and a Newton step solves it by eliminating along the
+//! cycle: `δu_{k+1} = A_k δu_k + g_k` with `A_k = −(∂f_k/∂u_{k+1})⁻¹ ∂f_k/∂u_k`,
+//! then `(I − A_{m−1}⋯A_0) δu_0 = G` (a 2×2 solve) and forward substitution.
+//! O(m) work with 2×2 blocks and no heap allocation (the workspace is
+//! allocated once per solver).
+
+use nalgebra::{Matrix2, Vector2};
+use serde::Serialize;
+
+use crate::model::{MappingEval, Model};
+use crate::structure::Structure;
+
+/// A switching point: the start of one mapping.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SwitchingPoint {
+    /// Phase `W t`.
+    pub phase: f64,
+    /// Displacement.
+    pub x: f64,
+}
+
+/// Why Newton stopped.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "outcome", rename_all = "snake_case")]
+pub enum Termination {
+    /// The residual fell below the tolerance.
+    Converged {
+        /// Newton iterations taken.
+        iterations: usize,
+        /// Final residual (max norm).
+        residual: f64,
+    },
+    /// The iteration limit was reached or the line search failed.
+    NotConverged {
+        /// Newton iterations taken.
+        iterations: usize,
+        /// Final residual (max norm).
+        residual: f64,
+        /// Why.
+        reason: String,
+    },
+    /// A Jacobian block could not be inverted.
+    Singular {
+        /// Newton iterations taken.
+        iterations: usize,
+        /// The mapping whose arrival block is singular (`None`: the cycle matrix).
+        segment: Option<usize>,
+        /// Why.
+        reason: String,
+    },
+}
+
+impl Termination {
+    /// Whether Newton converged.
+    pub fn converged(&self) -> bool {
+        matches!(self, Termination::Converged { .. })
+    }
+}
+
+/// Newton's tolerances.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonOptions {
+    /// Converged when every residual component is below this (absolute; the
+    /// residuals are displacements and velocities).
+    pub tolerance: f64,
+    /// Iteration limit.
+    pub max_iterations: usize,
+}
+
+impl Default for NewtonOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-12,
+            max_iterations: 60,
+        }
+    }
+}
+
+/// Newton's method for one structure, with its workspace.
+#[derive(Clone, Debug)]
+pub struct PeriodicSolver<M: Model> {
+    structure: Structure,
+    shift: f64,
+    a: Vec<Matrix2<f64>>,
+    g: Vec<Vector2<f64>>,
+    delta: Vec<Vector2<f64>>,
+    trial: Vec<SwitchingPoint>,
+    _model: std::marker::PhantomData<M>,
+}
+
+/// Error of one Newton step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SingularStep {
+    /// Segment whose arrival block is singular (`None`: the cycle matrix `I − DP`).
+    pub segment: Option<usize>,
+    /// Why.
+    pub reason: &'static str,
+}
+
+impl<M: Model> PeriodicSolver<M> {
+    /// A solver for `structure` (allocates its workspace once).
+    pub fn new(structure: Structure) -> Self {
+        let m = structure.len();
+        let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
+        Self {
+            structure,
+            shift,
+            a: vec![Matrix2::zeros(); m],
+            g: vec![Vector2::zeros(); m],
+            delta: vec![Vector2::zeros(); m],
+            trial: vec![SwitchingPoint { phase: 0.0, x: 0.0 }; m],
+            _model: std::marker::PhantomData,
+        }
+    }
+
+    /// The structure.
+    pub fn structure(&self) -> &Structure {
+        &self.structure
+    }
+
+    /// The point after point `k` (wrapping with the period shift).
+    #[inline]
+    fn next(&self, points: &[SwitchingPoint], k: usize) -> SwitchingPoint {
+        let m = points.len();
+        if k + 1 < m {
+            points[k + 1]
+        } else {
+            SwitchingPoint {
+                phase: points[0].phase + self.shift,
+                x: points[0].x,
+            }
+        }
+    }
+
+    /// Mapping `k` evaluated at the current points.
+    #[inline]
+    pub fn evaluate(&self, p: &M::Params, points: &[SwitchingPoint], k: usize) -> MappingEval {
+        let (a, b) = (points[k], self.next(points, k));
+        M::mapping(p, self.structure.steps()[k], a.x, a.phase, b.x, b.phase)
+    }
+
+    /// Largest residual component over all mappings (NaN propagates).
+    pub fn residual(&self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
+        let mut r = 0.0f64;
+        for k in 0..points.len() {
+            let (a, b) = (points[k], self.next(points, k));
+            let f = M::residual(p, self.structure.steps()[k], a.x, a.phase, b.x, b.phase);
+            for v in f.iter() {
+                if v.is_nan() {
+                    return f64::NAN;
+                }
+                r = r.max(v.abs());
+            }
+        }
+        r
+    }
+
+    /// Compute the Newton direction at `points` into the workspace
+    /// (no allocation). Returns the product `A_{m−1}⋯A_0` (ordered `(x, W t)`).
+    pub fn direction(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> Result<Matrix2<f64>, SingularStep> {
+        let m = points.len();
+        let mut product = Matrix2::identity();
+        let mut acc = Vector2::zeros();
+        for k in 0..m {
+            let e = self.evaluate(p, points, k);
+            let inv = e.d_next.try_inverse().ok_or(SingularStep {
+                segment: Some(k),
+                reason: "the arrival is tangent to the boundary (grazing): ∂f/∂(x, Wt) at the arrival is singular",
+            })?;
+            let a = -(inv * e.d_prev);
+            let g = -(inv * e.residual);
+            if !(a.iter().all(|v| v.is_finite()) && g.iter().all(|v| v.is_finite())) {
+                return Err(SingularStep {
+                    segment: Some(k),
+                    reason: "the mapping's Jacobian is not finite",
+                });
+            }
+            self.a[k] = a;
+            self.g[k] = g;
+            product = a * product;
+            acc = a * acc + g;
+        }
+        let cycle = Matrix2::identity() - product;
+        let inv = cycle.try_inverse().ok_or(SingularStep {
+            segment: None,
+            reason: "I − DP is singular: an eigenvalue of the Poincaré map equals 1 (saddle-node)",
+        })?;
+        self.delta[0] = inv * acc;
+        for k in 0..m - 1 {
+            self.delta[k + 1] = self.a[k] * self.delta[k] + self.g[k];
+        }
+        Ok(product)
+    }
+
+    /// One damped Newton step in place; returns the new residual. No allocation.
+    pub fn step(
+        &mut self,
+        p: &M::Params,
+        points: &mut [SwitchingPoint],
+        current: f64,
+    ) -> Result<f64, SingularStep> {
+        self.direction(p, points)?;
+        let mut lambda = 1.0;
+        let m = points.len();
+        loop {
+            for k in 0..m {
+                self.trial[k] = SwitchingPoint {
+                    x: points[k].x + lambda * self.delta[k][0],
+                    phase: points[k].phase + lambda * self.delta[k][1],
+                };
+            }
+            let r = self.residual(p, &self.trial);
+            if r < current || lambda < 1e-3 || current.is_nan() {
+                if r.is_finite() {
+                    points.copy_from_slice(&self.trial);
+                    return Ok(r);
+                }
+                return Ok(current);
+            }
+            lambda *= 0.5;
+        }
+    }
+
+    /// Solve from `guess` (modified in place).
+    pub fn solve(
+        &mut self,
+        p: &M::Params,
+        points: &mut [SwitchingPoint],
+        opts: NewtonOptions,
+    ) -> Termination {
+        assert_eq!(
+            points.len(),
+            self.structure.len(),
+            "one switching point per mapping"
+        );
+        let mut r = self.residual(p, points);
+        if !r.is_finite() {
+            return Termination::NotConverged {
+                iterations: 0,
+                residual: r,
+                reason: "the residual at the initial guess is not finite".into(),
+            };
+        }
+        for it in 0..opts.max_iterations {
+            if r <= opts.tolerance {
+                return Termination::Converged {
+                    iterations: it,
+                    residual: r,
+                };
+            }
+            match self.step(p, points, r) {
+                Ok(next) => {
+                    if next >= r && next > opts.tolerance {
+                        // Stagnation at round-off: accept a residual near the tolerance.
+                        if next <= 1e3 * opts.tolerance {
+                            return Termination::Converged {
+                                iterations: it + 1,
+                                residual: next,
+                            };
+                        }
+                        return Termination::NotConverged {
+                            iterations: it + 1,
+                            residual: next,
+                            reason: "the line search found no decrease".into(),
+                        };
+                    }
+                    r = next;
+                }
+                Err(s) => {
+                    return Termination::Singular {
+                        iterations: it,
+                        segment: s.segment,
+                        reason: s.reason.into(),
+                    };
+                }
+            }
+        }
+        if r <= opts.tolerance {
+            Termination::Converged {
+                iterations: opts.max_iterations,
+                residual: r,
+            }
+        } else {
+            Termination::NotConverged {
+                iterations: opts.max_iterations,
+                residual: r,
+                reason: format!("no convergence in {} iterations", opts.max_iterations),
+            }
+        }
+    }
+
+    /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` at `points`,
+    /// ordered `(W t, x)` (SPEC §7, Eq. B.1), or why it does not exist.
+    pub fn poincare_jacobian(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> Result<Matrix2<f64>, SingularStep> {
+        let mut dp = Matrix2::identity();
+        for k in 0..points.len() {
+            let e = self.evaluate(p, points, k);
+            let local = e.local_jacobian().ok_or(SingularStep {
+                segment: Some(k),
+                reason: "the arrival is tangent to the boundary (grazing)",
+            })?;
+            dp = local * dp;
+        }
+        Ok(dp)
+    }
+}

@@ -1,0 +1,487 @@
+//! Exact event-driven simulation with stick (SPEC §3, §8).
+//!
+//! Inside a domain the motion is the generated closed-form flow, always
+//! evaluated from the segment's start (no error accumulates along a
+//! segment). The next switching phase is the first root of `v − V_b` for the
+//! domain's two boundaries, located by [`crate::crossing::first_root`], whose
+//! step rule cannot miss a crossing: the bound it needs on `|v''|` comes from
+//! the linear ODE that the acceleration `a` and its rate `a'` satisfy in a
+//! domain, `(a, a')' = M (a, a') + (0, −A0 W² cos W t)` with
+//! `M = [[0, 1], [−c_j, −2 d_j]]`, hence by Grönwall
+//! `|a'| ≤ (max(|a0|, |a0'|) + Δt A0 W²) e^{max(1, c_j + 2|d_j|) Δt}`.
+//! On the stick boundary the force criteria decide pass or stick; a stick
+//! ends at the first phase where `Fnf = ±as` (bound `|Fnf''| ≤ A0` in phase).
+
+use serde::Serialize;
+
+use crate::crossing::{first_root, Probe, RootKind};
+use crate::model::{Coefficients, Model, Oscillator};
+use crate::param::{ParamError, ParamSet};
+
+/// Where the motion is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Location {
+    /// In domain `j` (index, lowest band first).
+    Domain(usize),
+    /// Stuck on the stick boundary.
+    Stick,
+}
+
+/// What happened at an event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EventKind {
+    /// The flow passes through the boundary.
+    Pass,
+    /// The flow arrives on the stick boundary and sticks.
+    StickOnset,
+    /// A stick ends (`Fnf = ±as`).
+    StickEnd,
+    /// The flow touches the boundary tangentially and stays on its side.
+    Graze,
+}
+
+/// One recorded event.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Event {
+    /// Phase `W t`.
+    pub phase: f64,
+    /// Displacement.
+    pub x: f64,
+    /// Velocity (the boundary's velocity, except at a graze).
+    pub v: f64,
+    /// Boundary index.
+    pub boundary: usize,
+    /// What happened.
+    pub kind: EventKind,
+    /// Location before.
+    pub before: Location,
+    /// Location after.
+    pub after: Location,
+}
+
+/// The start of the current segment: the flow (or stick) from here.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Segment {
+    /// Displacement at the start.
+    pub x: f64,
+    /// Velocity at the start.
+    pub v: f64,
+    /// Phase at the start.
+    pub phase: f64,
+    /// Domain or stick.
+    pub location: Location,
+    /// Events are searched after this phase (the start itself, or a graze).
+    pub search_from: f64,
+}
+
+/// Why a simulation stopped.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// The parameters are invalid.
+    #[error(transparent)]
+    Params(#[from] ParamError),
+    /// An input state is NaN or infinite.
+    #[error("the initial state ({x}, {v}) at phase {phase} is not finite")]
+    BadStart {
+        /// x
+        x: f64,
+        /// v
+        v: f64,
+        /// phase
+        phase: f64,
+    },
+    /// The state became NaN or infinite (e.g. growth under negative damping).
+    #[error("the state is no longer finite at phase {phase} in {location:?} (x = {x}, v = {v})")]
+    NotFinite {
+        /// Phase.
+        phase: f64,
+        /// Where.
+        location: Location,
+        /// x
+        x: f64,
+        /// v
+        v: f64,
+    },
+    /// More events than allowed before the end phase (chattering or a too long run).
+    #[error("more than {limit} events before phase {phase}")]
+    TooManyEvents {
+        /// The limit.
+        limit: usize,
+        /// Where the run stopped.
+        phase: f64,
+    },
+}
+
+/// Tolerances of the simulation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimOptions {
+    /// How close to a boundary a tangent touch must come to count as a graze.
+    pub graze_tol: f64,
+    /// At most this many events per call of [`Simulator::run`].
+    pub max_events: usize,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        Self {
+            graze_tol: 1e-10,
+            max_events: 1_000_000,
+        }
+    }
+}
+
+/// An event-driven simulator for model `M` at fixed parameters.
+#[derive(Clone, Debug)]
+pub struct Simulator<M: Model> {
+    p: M::Params,
+    osc: Oscillator,
+    coefficients: Vec<Coefficients>,
+    velocities: Vec<f64>,
+    stick: Option<(usize, f64)>,
+    opts: SimOptions,
+}
+
+impl<M: Model> Simulator<M> {
+    /// A simulator at parameters `p` (checked).
+    pub fn new(p: M::Params, opts: SimOptions) -> Result<Self, SimError> {
+        p.check()?;
+        let info = M::INFO;
+        let coefficients = (0..info.domains.len())
+            .map(|j| M::coefficients(&p, j))
+            .collect();
+        let velocities = (0..info.boundaries.len())
+            .map(|k| M::boundary_velocity(&p, k))
+            .collect();
+        let stick = info
+            .stick_boundary()
+            .and_then(|k| M::static_bound(&p).map(|s| (k, s)));
+        Ok(Self {
+            p,
+            osc: M::oscillator(&p),
+            coefficients,
+            velocities,
+            stick,
+            opts,
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &M::Params {
+        &self.p
+    }
+
+    /// The oscillator.
+    pub fn oscillator(&self) -> Oscillator {
+        self.osc
+    }
+
+    /// Velocity of boundary `k`.
+    pub fn velocity(&self, k: usize) -> f64 {
+        self.velocities[k]
+    }
+
+    /// `(x, v)` at `phase` of the segment started at `seg`.
+    #[inline]
+    pub fn state_at(&self, seg: &Segment, phase: f64) -> (f64, f64) {
+        match seg.location {
+            Location::Domain(j) => {
+                let [x, v] = M::flow(&self.p, j, seg.x, seg.v, seg.phase, phase);
+                (x, v)
+            }
+            Location::Stick => (
+                seg.x + seg.v * (phase - seg.phase) / self.osc.frequency,
+                seg.v,
+            ),
+        }
+    }
+
+    /// Acceleration at a state.
+    pub fn acceleration(&self, location: Location, x: f64, v: f64, phase: f64) -> f64 {
+        match location {
+            Location::Domain(j) => M::normal_field(&self.p, j, x, v, phase)[0],
+            Location::Stick => 0.0,
+        }
+    }
+
+    /// The segment that starts at `(x, v, phase)`: the domain containing `v`;
+    /// on a boundary, the side the vector field points to; on the stick
+    /// boundary, the force criteria of SPEC §3.
+    pub fn start(&self, x: f64, v: f64, phase: f64) -> Result<Segment, SimError> {
+        if !(x.is_finite() && v.is_finite() && phase.is_finite()) {
+            return Err(SimError::BadStart { x, v, phase });
+        }
+        let info = M::INFO;
+        let location = match self.velocities.iter().position(|&vb| vb == v) {
+            None => Location::Domain(
+                info.domains
+                    .iter()
+                    .position(|d| {
+                        d.lower.is_none_or(|k| self.velocities[k] < v)
+                            && d.upper.is_none_or(|k| v < self.velocities[k])
+                    })
+                    .expect("the bands tile the velocity axis"),
+            ),
+            Some(k) => {
+                let (above, below) = (k + 1, k);
+                match self.stick {
+                    Some((s, _)) if s == k => {
+                        let f = M::stick_forces(&self.p, x, phase).expect("stick boundary");
+                        if f.input_above > 0.0 {
+                            Location::Domain(above)
+                        } else if f.input_below < 0.0 {
+                            Location::Domain(below)
+                        } else {
+                            Location::Stick
+                        }
+                    }
+                    _ => {
+                        let a = M::normal_field(&self.p, above, x, v, phase)[0];
+                        Location::Domain(if a >= 0.0 { above } else { below })
+                    }
+                }
+            }
+        };
+        Ok(Segment {
+            x,
+            v,
+            phase,
+            location,
+            search_from: phase,
+        })
+    }
+
+    /// The next event of the segment `seg` before `phase_limit`, with the
+    /// segment that follows it; `None` if none occurs before the limit.
+    /// Allocates nothing.
+    pub fn next_event(
+        &self,
+        seg: &Segment,
+        phase_limit: f64,
+    ) -> Result<Option<(Event, Segment)>, SimError> {
+        let w = self.osc.frequency;
+        match seg.location {
+            Location::Domain(j) => {
+                let info = M::INFO.domains[j];
+                let co = self.coefficients[j];
+                let lo = info.lower.map(|k| self.velocities[k]);
+                let hi = info.upper.map(|k| self.velocities[k]);
+                let probe = |phi: f64| {
+                    let [x, v] = M::flow(&self.p, j, seg.x, seg.v, seg.phase, phi);
+                    let [a, da] = M::normal_field(&self.p, j, x, v, phi);
+                    Probe {
+                        h: [
+                            lo.map_or(f64::INFINITY, |l| v - l),
+                            hi.map_or(f64::INFINITY, |h| v - h),
+                        ],
+                        dh: a / w,
+                        ddh: da / (w * w),
+                    }
+                };
+                let lipschitz = 1.0f64.max(co.c.abs() + co.two_d.abs());
+                let forcing = self.osc.amplitude.abs() * w * w;
+                let bound = |_phi: f64, delta: f64, p: &Probe| {
+                    let dt = delta / w;
+                    let u0 = (p.dh * w).abs().max((p.ddh * w * w).abs());
+                    (u0 + dt * forcing) * (lipschitz * dt).exp() / (w * w)
+                };
+                let step = (std::f64::consts::FRAC_PI_4)
+                    .min(w * 0.5 / (co.c.abs().sqrt() + 0.5 * co.two_d.abs()));
+                // A segment that starts on a boundary leaves it: rounding can make
+                // `v - V_b` look like it returns within a few ulps of the start.
+                // Such a root (within 1e-9 of the start, on the boundary left) is
+                // the departure itself, not an event.
+                let departure = |r: &crate::crossing::Root| {
+                    let k = if r.which == 0 { info.lower } else { info.upper };
+                    k.is_some_and(|k| self.velocities[k] == seg.v)
+                        && r.phase - seg.phase <= 1e-9 * seg.phase.abs().max(1.0)
+                };
+                let mut from = seg.search_from;
+                let root = loop {
+                    match first_root(&probe, &bound, from, phase_limit, step, self.opts.graze_tol) {
+                        Some(r) if departure(&r) => {
+                            from = r.phase + 1e-9 * seg.phase.abs().max(1.0)
+                        }
+                        other => break other,
+                    }
+                };
+                let Some(root) = root else {
+                    self.check_finite(seg, phase_limit)?;
+                    return Ok(None);
+                };
+                let (x, v) = self.state_at(seg, root.phase);
+                if !(x.is_finite() && v.is_finite()) {
+                    return Err(SimError::NotFinite {
+                        phase: root.phase,
+                        location: seg.location,
+                        x,
+                        v,
+                    });
+                }
+                let k = if root.which == 0 {
+                    info.lower
+                } else {
+                    info.upper
+                }
+                .expect("root of a present boundary");
+                let vb = self.velocities[k];
+                if root.kind == RootKind::Graze {
+                    let event = Event {
+                        phase: root.phase,
+                        x,
+                        v,
+                        boundary: k,
+                        kind: EventKind::Graze,
+                        before: seg.location,
+                        after: seg.location,
+                    };
+                    let next = Segment {
+                        search_from: root.phase + step * 1e-9,
+                        ..*seg
+                    };
+                    return Ok(Some((event, next)));
+                }
+                let upward = root.which == 1;
+                let other = if upward { j + 1 } else { j - 1 };
+                let (kind, after) = match self.stick {
+                    Some((s, _)) if s == k => {
+                        let f = M::stick_forces(&self.p, x, root.phase).expect("stick boundary");
+                        // Arriving from above: pass iff both input forces push down;
+                        // from below: pass iff both push up; otherwise stick (Eqs. 17-19, 26-28).
+                        let pass = if upward {
+                            f.input_above > 0.0
+                        } else {
+                            f.input_below < 0.0
+                        };
+                        if pass {
+                            (EventKind::Pass, Location::Domain(other))
+                        } else {
+                            (EventKind::StickOnset, Location::Stick)
+                        }
+                    }
+                    _ => (EventKind::Pass, Location::Domain(other)),
+                };
+                let event = Event {
+                    phase: root.phase,
+                    x,
+                    v: vb,
+                    boundary: k,
+                    kind,
+                    before: seg.location,
+                    after,
+                };
+                let next = Segment {
+                    x,
+                    v: vb,
+                    phase: root.phase,
+                    location: after,
+                    search_from: root.phase,
+                };
+                Ok(Some((event, next)))
+            }
+            Location::Stick => {
+                let (k, bound_s) = self.stick.expect("stuck only on a stick boundary");
+                let vs = self.velocities[k];
+                let (a0, d, c) = (self.osc.amplitude, self.osc.damping, self.osc.stiffness);
+                let probe = |phi: f64| {
+                    let x = seg.x + vs * (phi - seg.phase) / w;
+                    let fnf = M::stick_forces(&self.p, x, phi)
+                        .expect("stick boundary")
+                        .non_friction;
+                    Probe {
+                        h: [fnf - bound_s, fnf + bound_s],
+                        dh: -a0 * phi.sin() - c * vs / w,
+                        ddh: -a0 * phi.cos(),
+                    }
+                };
+                let _ = d;
+                let bound = |_phi: f64, _delta: f64, _p: &Probe| a0.abs();
+                let root = first_root(
+                    &probe,
+                    &bound,
+                    seg.search_from,
+                    phase_limit,
+                    std::f64::consts::FRAC_PI_4,
+                    self.opts.graze_tol,
+                );
+                let Some(root) = root else {
+                    return Ok(None);
+                };
+                let (x, _) = self.state_at(seg, root.phase);
+                if root.kind == RootKind::Graze {
+                    // |Fnf| touches as without exceeding it: the stick persists.
+                    let event = Event {
+                        phase: root.phase,
+                        x,
+                        v: vs,
+                        boundary: k,
+                        kind: EventKind::Graze,
+                        before: Location::Stick,
+                        after: Location::Stick,
+                    };
+                    let next = Segment {
+                        search_from: root.phase + 1e-9,
+                        ..*seg
+                    };
+                    return Ok(Some((event, next)));
+                }
+                let after = Location::Domain(if root.which == 0 { k + 1 } else { k });
+                let event = Event {
+                    phase: root.phase,
+                    x,
+                    v: vs,
+                    boundary: k,
+                    kind: EventKind::StickEnd,
+                    before: Location::Stick,
+                    after,
+                };
+                let next = Segment {
+                    x,
+                    v: vs,
+                    phase: root.phase,
+                    location: after,
+                    search_from: root.phase,
+                };
+                Ok(Some((event, next)))
+            }
+        }
+    }
+
+    fn check_finite(&self, seg: &Segment, phase: f64) -> Result<(), SimError> {
+        let (x, v) = self.state_at(seg, phase);
+        if x.is_finite() && v.is_finite() {
+            Ok(())
+        } else {
+            Err(SimError::NotFinite {
+                phase,
+                location: seg.location,
+                x,
+                v,
+            })
+        }
+    }
+
+    /// Simulate from `seg` to `phase_end`, calling `on_event` for every event;
+    /// returns the segment in force at `phase_end`.
+    pub fn run(
+        &self,
+        mut seg: Segment,
+        phase_end: f64,
+        mut on_event: impl FnMut(&Event),
+    ) -> Result<Segment, SimError> {
+        for _ in 0..self.opts.max_events {
+            match self.next_event(&seg, phase_end)? {
+                None => return Ok(seg),
+                Some((event, next)) => {
+                    on_event(&event);
+                    seg = next;
+                }
+            }
+        }
+        Err(SimError::TooManyEvents {
+            limit: self.opts.max_events,
+            phase: seg.search_from,
+        })
+    }
+}

@@ -1,0 +1,253 @@
+//! Mapping structures `P_{σm … σ2 σ1}` (SPEC §6): parsed and printed in the
+//! paper's notation, applied right to left, validated against the model's
+//! topology.
+
+use crate::model::{MappingKind, ModelInfo, Side};
+
+/// Why a structure was rejected.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum StructureError {
+    /// No mapping named.
+    #[error("an empty mapping structure")]
+    Empty,
+    /// A name that is not a mapping of the model.
+    #[error("`{name}` is not a mapping of `{model}` (it has {known})")]
+    UnknownMapping {
+        /// The name.
+        name: String,
+        /// The model.
+        model: String,
+        /// The model's mappings.
+        known: String,
+    },
+    /// Consecutive mappings do not meet.
+    #[error("{first} ends on {ends_on}, but {second} starts on {starts_on}")]
+    Disconnected {
+        /// The earlier mapping (in application order).
+        first: String,
+        /// Where it ends.
+        ends_on: String,
+        /// The mapping applied next.
+        second: String,
+        /// Where that one starts.
+        starts_on: String,
+    },
+    /// Two stick mappings in a row, or a stick mapping with nowhere to go.
+    #[error("the stick mapping {0} must be followed by a mapping that leaves the stick boundary into a domain")]
+    StickExit(String),
+    /// A period of zero forcing cycles.
+    #[error("the period N must be at least 1 forcing period")]
+    ZeroPeriod,
+}
+
+/// A mapping structure with its period `N` (forcing periods per cycle).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Structure {
+    /// Indices into `ModelInfo::mappings`, in application order (`σ1` first);
+    /// stick mappings resolved to the exit side the next mapping needs.
+    steps: Vec<usize>,
+    /// Forcing periods per cycle.
+    periods: u32,
+}
+
+impl Structure {
+    /// Parse `P_{3_31 0_11 3_13 4_33}` or `3_31 0_11 3_13 4_33` (applied right
+    /// to left: `4_33` first) for model `info`, with period `periods`.
+    pub fn parse(info: &ModelInfo, text: &str, periods: u32) -> Result<Self, StructureError> {
+        let t = text.trim();
+        let inner = t
+            .strip_prefix("P_{")
+            .or_else(|| t.strip_prefix("P{"))
+            .and_then(|r| r.strip_suffix('}'))
+            .unwrap_or(t);
+        let written: Vec<&str> = inner.split_whitespace().collect();
+        let mut names = Vec::with_capacity(written.len());
+        for w in written.iter().rev() {
+            if info.mapping_index(w, None).is_none() {
+                return Err(StructureError::UnknownMapping {
+                    name: w.to_string(),
+                    model: info.name.to_string(),
+                    known: info.mapping_names().join(", "),
+                });
+            }
+            names.push(*w);
+        }
+        Self::from_names(info, &names, periods)
+    }
+
+    /// Build from mapping names in application order.
+    pub fn from_names(
+        info: &ModelInfo,
+        applied: &[&str],
+        periods: u32,
+    ) -> Result<Self, StructureError> {
+        if applied.is_empty() {
+            return Err(StructureError::Empty);
+        }
+        if periods == 0 {
+            return Err(StructureError::ZeroPeriod);
+        }
+        let m = applied.len();
+        let mut steps = Vec::with_capacity(m);
+        for k in 0..m {
+            let name = applied[k];
+            let first =
+                info.mapping_index(name, None)
+                    .ok_or_else(|| StructureError::UnknownMapping {
+                        name: name.to_string(),
+                        model: info.name.to_string(),
+                        known: info.mapping_names().join(", "),
+                    })?;
+            let idx = if info.mappings[first].kind == MappingKind::Stick {
+                let next = info.mappings[info
+                    .mapping_index(applied[(k + 1) % m], None)
+                    .expect("checked in turn")];
+                let side = match next.domain {
+                    Some(j) if info.domains[j].lower == Some(next.from) => Side::Above,
+                    Some(_) => Side::Below,
+                    None => return Err(StructureError::StickExit(name.to_string())),
+                };
+                info.mapping_index(name, Some(side))
+                    .expect("both stick exits are generated together")
+            } else {
+                first
+            };
+            steps.push(idx);
+        }
+        for k in 0..m {
+            let (a, b) = (&info.mappings[steps[k]], &info.mappings[steps[(k + 1) % m]]);
+            if a.to != b.from {
+                return Err(StructureError::Disconnected {
+                    first: a.name.to_string(),
+                    ends_on: info.boundaries[a.to].label.to_string(),
+                    second: b.name.to_string(),
+                    starts_on: info.boundaries[b.from].label.to_string(),
+                });
+            }
+        }
+        Ok(Self { steps, periods })
+    }
+
+    /// Build from mapping indices in application order (as found by simulation).
+    pub fn from_indices(
+        info: &ModelInfo,
+        applied: &[usize],
+        periods: u32,
+    ) -> Result<Self, StructureError> {
+        let names: Vec<&str> = applied.iter().map(|&i| info.mappings[i].name).collect();
+        Self::from_names(info, &names, periods)
+    }
+
+    /// The mapping indices in application order.
+    pub fn steps(&self) -> &[usize] {
+        &self.steps
+    }
+
+    /// Number of mappings `m`.
+    pub fn len(&self) -> usize {
+        self.steps.len()
+    }
+
+    /// Always false: a structure has at least one mapping.
+    pub fn is_empty(&self) -> bool {
+        self.steps.is_empty()
+    }
+
+    /// Forcing periods per cycle.
+    pub fn periods(&self) -> u32 {
+        self.periods
+    }
+
+    /// Whether any mapping is the stick mapping.
+    pub fn has_stick(&self, info: &ModelInfo) -> bool {
+        self.steps
+            .iter()
+            .any(|&i| info.mappings[i].kind == MappingKind::Stick)
+    }
+
+    /// The same cycle started at its canonical mapping: the rotation whose
+    /// sequence of (domain, from, to) is smallest, domains lowest band first
+    /// and the stick mapping last. The reference motions start this way (at
+    /// `4_33` for the paper model). Returns the rotation offset too.
+    pub fn canonical(&self, info: &ModelInfo) -> (Self, usize) {
+        let key = |i: usize| {
+            let m = &info.mappings[i];
+            (m.domain.unwrap_or(usize::MAX), m.from, m.to)
+        };
+        let m = self.steps.len();
+        let best = (0..m)
+            .min_by(|&r, &s| {
+                let a = (0..m).map(|k| key(self.steps[(r + k) % m]));
+                let b = (0..m).map(|k| key(self.steps[(s + k) % m]));
+                a.cmp(b)
+            })
+            .unwrap_or(0);
+        let steps = (0..m).map(|k| self.steps[(best + k) % m]).collect();
+        (
+            Self {
+                steps,
+                periods: self.periods,
+            },
+            best,
+        )
+    }
+
+    /// The paper's notation, `P_{σm … σ1}`.
+    pub fn notation(&self, info: &ModelInfo) -> String {
+        let names: Vec<&str> = self
+            .steps
+            .iter()
+            .rev()
+            .map(|&i| info.mappings[i].name)
+            .collect();
+        format!("P_{{{}}}", names.join(" "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::paper::Paper;
+    use crate::Model;
+
+    #[test]
+    fn parses_both_notations_and_applies_right_to_left() {
+        let info = Paper::INFO;
+        let a = Structure::parse(info, "P_{3_31 0_11 3_13 4_33}", 1).unwrap();
+        let b = Structure::parse(info, "3_31 0_11 3_13 4_33", 1).unwrap();
+        assert_eq!(a, b);
+        let names: Vec<&str> = a.steps().iter().map(|&i| info.mappings[i].name).collect();
+        assert_eq!(names, ["4_33", "3_13", "0_11", "3_31"]);
+        assert_eq!(a.notation(info), "P_{3_31 0_11 3_13 4_33}");
+        // 0_11 is followed by 3_31 (domain 3 lies below Sigma1): it leaves downwards.
+        assert_eq!(info.mappings[a.steps()[2]].exit, Some(Side::Below));
+    }
+
+    #[test]
+    fn rejects_disconnected_and_unknown_mappings() {
+        let info = Paper::INFO;
+        let e = Structure::parse(info, "P_{1_22 3_13 4_33}", 1).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "3_13 ends on Sigma1, but 1_22 starts on Sigma2"
+        );
+        let e = Structure::parse(info, "P_{3_31 9_99}", 1).unwrap_err();
+        assert!(matches!(e, StructureError::UnknownMapping { .. }), "{e}");
+        assert_eq!(
+            Structure::parse(info, "P_{}", 1).unwrap_err(),
+            StructureError::Empty
+        );
+        assert_eq!(
+            Structure::parse(info, "3_33 4_33", 0).unwrap_err(),
+            StructureError::ZeroPeriod
+        );
+    }
+
+    #[test]
+    fn canonical_rotation_starts_at_the_lowest_domain() {
+        let info = Paper::INFO;
+        let s = Structure::parse(info, "P_{3_13 4_33 3_31 1_12 2_22 1_21}", 1).unwrap();
+        let (c, _) = s.canonical(info);
+        assert_eq!(c.notation(info), "P_{3_31 1_12 2_22 1_21 3_13 4_33}");
+    }
+}
