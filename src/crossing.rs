@@ -125,6 +125,26 @@ fn search(
     if !open[0] && !open[1] {
         return None;
     }
+    // Where the slope cannot vanish (|h'| > B Δ on the whole interval), each
+    // open function is monotone there: one sign test decides, and a sign
+    // change brackets its only root, polished directly.
+    if (0..2).all(|k| !open[k] || pa.dh.abs() > b * delta) {
+        let pb = probe(a + delta);
+        let mut best: Option<Root> = None;
+        for k in 0..2 {
+            if open[k] && (pb.h[k] == 0.0 || (pa.h[k] > 0.0) != (pb.h[k] > 0.0)) {
+                let r = Root {
+                    phase: polish(probe, k, a, a + delta, pa.h[k]),
+                    which: k,
+                    kind: RootKind::Crossing,
+                };
+                if best.is_none_or(|b| r.phase < b.phase) {
+                    best = Some(r);
+                }
+            }
+        }
+        return best;
+    }
     if delta <= min_width || a + delta <= a {
         let pb = probe(a + delta);
         // Among the open functions, the one that changes sign, else the one closest to zero.

@@ -91,6 +91,8 @@ pub struct PeriodicSolver<M: Model> {
     g: Vec<Vector2<f64>>,
     delta: Vec<Vector2<f64>>,
     trial: Vec<SwitchingPoint>,
+    evals: Vec<MappingEval>,
+    trial_evals: Vec<MappingEval>,
     _model: std::marker::PhantomData<M>,
 }
 
@@ -115,6 +117,8 @@ impl<M: Model> PeriodicSolver<M> {
             g: vec![Vector2::zeros(); m],
             delta: vec![Vector2::zeros(); m],
             trial: vec![SwitchingPoint { phase: 0.0, x: 0.0 }; m],
+            evals: vec![MappingEval::NAN; m],
+            trial_evals: vec![MappingEval::NAN; m],
             _model: std::marker::PhantomData,
         }
     }
@@ -161,18 +165,37 @@ impl<M: Model> PeriodicSolver<M> {
         r
     }
 
-    /// Compute the Newton direction at `points` into the workspace
-    /// (no allocation). Returns the product `A_{m−1}⋯A_0` (ordered `(x, W t)`).
-    pub fn direction(
-        &mut self,
+    /// Evaluate every mapping (residual and Jacobian blocks) at `points` into
+    /// `out`; returns the largest residual component (NaN propagates).
+    fn evaluate_all(
+        &self,
         p: &M::Params,
         points: &[SwitchingPoint],
-    ) -> Result<Matrix2<f64>, SingularStep> {
-        let m = points.len();
+        out: &mut [MappingEval],
+    ) -> f64 {
+        let mut r = 0.0f64;
+        for (k, slot) in out.iter_mut().enumerate() {
+            let e = self.evaluate(p, points, k);
+            for v in e.residual.iter() {
+                if v.is_nan() {
+                    r = f64::NAN;
+                } else if !r.is_nan() {
+                    r = r.max(v.abs());
+                }
+            }
+            *slot = e;
+        }
+        r
+    }
+
+    /// The Newton direction from the evaluations in the workspace, by
+    /// elimination along the cycle. Returns `A_{m−1}⋯A_0` (ordered `(x, W t)`).
+    fn eliminate(&mut self) -> Result<Matrix2<f64>, SingularStep> {
+        let m = self.evals.len();
         let mut product = Matrix2::identity();
         let mut acc = Vector2::zeros();
         for k in 0..m {
-            let e = self.evaluate(p, points, k);
+            let e = &self.evals[k];
             let inv = e.d_next.try_inverse().ok_or(SingularStep {
                 segment: Some(k),
                 reason: "the arrival is tangent to the boundary (grazing): ∂f/∂(x, Wt) at the arrival is singular",
@@ -200,6 +223,19 @@ impl<M: Model> PeriodicSolver<M> {
             self.delta[k + 1] = self.a[k] * self.delta[k] + self.g[k];
         }
         Ok(product)
+    }
+
+    /// Compute the Newton direction at `points` into the workspace
+    /// (no allocation). Returns the product `A_{m−1}⋯A_0` (ordered `(x, W t)`).
+    pub fn direction(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> Result<Matrix2<f64>, SingularStep> {
+        let mut evals = std::mem::take(&mut self.evals);
+        self.evaluate_all(p, points, &mut evals);
+        self.evals = evals;
+        self.eliminate()
     }
 
     /// One damped Newton step in place; returns the new residual. No allocation.
@@ -231,7 +267,10 @@ impl<M: Model> PeriodicSolver<M> {
         }
     }
 
-    /// Solve from `guess` (modified in place).
+    /// Solve from `guess` (modified in place). Each iteration evaluates the
+    /// mappings once: the evaluation at an accepted trial point is the next
+    /// iteration's Jacobian. Backtracking (residuals only) only when the full
+    /// step does not decrease the residual.
     pub fn solve(
         &mut self,
         p: &M::Params,
@@ -243,7 +282,10 @@ impl<M: Model> PeriodicSolver<M> {
             self.structure.len(),
             "one switching point per mapping"
         );
-        let mut r = self.residual(p, points);
+        let m = points.len();
+        let mut evals = std::mem::take(&mut self.evals);
+        let mut r = self.evaluate_all(p, points, &mut evals);
+        self.evals = evals;
         if !r.is_finite() {
             return Termination::NotConverged {
                 iterations: 0,
@@ -258,29 +300,64 @@ impl<M: Model> PeriodicSolver<M> {
                     residual: r,
                 };
             }
-            match self.step(p, points, r) {
-                Ok(next) => {
-                    if next >= r && next > opts.tolerance {
-                        // Stagnation at round-off: accept a residual near the tolerance.
-                        if next <= 1e3 * opts.tolerance {
-                            return Termination::Converged {
-                                iterations: it + 1,
-                                residual: next,
-                            };
-                        }
-                        return Termination::NotConverged {
-                            iterations: it + 1,
-                            residual: next,
-                            reason: "the line search found no decrease".into(),
-                        };
-                    }
-                    r = next;
+            if let Err(s) = self.eliminate() {
+                return Termination::Singular {
+                    iterations: it,
+                    segment: s.segment,
+                    reason: s.reason.into(),
+                };
+            }
+            for k in 0..m {
+                self.trial[k] = SwitchingPoint {
+                    x: points[k].x + self.delta[k][0],
+                    phase: points[k].phase + self.delta[k][1],
+                };
+            }
+            let mut trial_evals = std::mem::take(&mut self.trial_evals);
+            let rt = self.evaluate_all(p, &self.trial, &mut trial_evals);
+            self.trial_evals = trial_evals;
+            if rt < r {
+                points.copy_from_slice(&self.trial);
+                std::mem::swap(&mut self.evals, &mut self.trial_evals);
+                r = rt;
+                continue;
+            }
+            // Backtrack on the residual alone.
+            let mut lambda = 0.5;
+            let mut accepted = None;
+            while lambda >= 1e-3 {
+                for k in 0..m {
+                    self.trial[k] = SwitchingPoint {
+                        x: points[k].x + lambda * self.delta[k][0],
+                        phase: points[k].phase + lambda * self.delta[k][1],
+                    };
                 }
-                Err(s) => {
-                    return Termination::Singular {
-                        iterations: it,
-                        segment: s.segment,
-                        reason: s.reason.into(),
+                let rl = self.residual(p, &self.trial);
+                if rl < r {
+                    accepted = Some(rl);
+                    break;
+                }
+                lambda *= 0.5;
+            }
+            match accepted {
+                Some(_) => {
+                    points.copy_from_slice(&self.trial);
+                    let mut evals = std::mem::take(&mut self.evals);
+                    r = self.evaluate_all(p, points, &mut evals);
+                    self.evals = evals;
+                }
+                None if r <= 1e3 * opts.tolerance => {
+                    // Stagnation at round-off just above the tolerance.
+                    return Termination::Converged {
+                        iterations: it + 1,
+                        residual: r,
+                    };
+                }
+                None => {
+                    return Termination::NotConverged {
+                        iterations: it + 1,
+                        residual: r,
+                        reason: "the line search found no decrease".into(),
                     };
                 }
             }
