@@ -226,7 +226,7 @@ pub fn find<M: Model>(
             .collect();
         let motion = solve(sim, canonical, rotated, opts.newton);
         if motion.is_admissible() {
-            return Ok(Attractor::Periodic(motion));
+            return Ok(Attractor::Periodic(primitive(sim, motion, opts.newton)));
         }
         if phase + chunk >= end {
             return motion.into_result().map(Attractor::Periodic);
@@ -235,6 +235,40 @@ pub fn find<M: Model>(
     Err(OrbitError::Unsettled {
         periods: opts.max_periods,
     })
+}
+
+/// A cycle found as `r` repetitions of a shorter one (a slowly alternating
+/// transient can make the doubled cycle match first) is reported as the
+/// shorter cycle: same mappings repeated, points repeating after `m / r`
+/// mappings shifted by a whole number of forcing periods.
+pub fn primitive<M: Model>(sim: &Simulator<M>, motion: Motion, newton: NewtonOptions) -> Motion {
+    let m = motion.structure.len();
+    let n = motion.structure.periods() as usize;
+    let steps = motion.structure.steps();
+    for q in 1..m {
+        if m % q != 0 || (n * q) % m != 0 {
+            continue;
+        }
+        let shift = TAU * (n * q / m) as f64;
+        let repeats = (0..m).all(|k| {
+            let (a, b) = (motion.points[k], motion.points[(k + q) % m]);
+            let wrap = if k + q >= m { TAU * n as f64 } else { 0.0 };
+            steps[k] == steps[(k + q) % m]
+                && (b.phase + wrap - a.phase - shift).abs() < 1e-8 * (1.0 + a.phase.abs())
+                && (b.x - a.x).abs() < 1e-8 * (1.0 + a.x.abs())
+        });
+        if repeats && n * q / m >= 1 {
+            let Ok(short) = Structure::from_indices(M::INFO, &steps[..q], (n * q / m) as u32)
+            else {
+                continue;
+            };
+            let reduced = solve(sim, short, motion.points[..q].to_vec(), newton);
+            if reduced.is_admissible() {
+                return reduced;
+            }
+        }
+    }
+    motion
 }
 
 /// Seed `structure` by simulation: from rest and from a few other starts,

@@ -26,9 +26,12 @@ pub mod models;
 pub mod motion;
 pub mod param;
 pub mod periodic;
+pub mod plot;
+pub mod report;
 pub mod simulate;
 pub mod stability;
 pub mod structure;
+pub mod sweep;
 
 pub use model::{
     BoundaryInfo, Coefficients, DomainInfo, MappingEval, MappingInfo, MappingKind, Model,
