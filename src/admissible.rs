@@ -161,7 +161,7 @@ pub fn conditions<M: Model>(
             ),
             duration,
         );
-        if !(duration > 0.0) {
+        if duration.is_nan() || duration <= 0.0 {
             continue;
         }
         match (mi.kind, mi.domain) {
@@ -392,6 +392,6 @@ pub fn violations<M: Model>(
     points: &[SwitchingPoint],
 ) -> Vec<Violation> {
     let mut all = conditions(sim, structure, points);
-    all.retain(|c| !(c.margin > 0.0));
+    all.retain(|c| c.margin.is_nan() || c.margin <= 0.0);
     all
 }

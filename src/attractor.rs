@@ -88,7 +88,7 @@ pub fn no_motion_certificate<M: Model>(
     let osc = sim.oscillator();
     let d = 0.5 * co.two_d;
     let c = co.c;
-    if !(d > 0.0) {
+    if d.is_nan() || d <= 0.0 {
         return None;
     }
     let w = osc.frequency;

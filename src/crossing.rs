@@ -95,8 +95,13 @@ pub fn first_root(
         if let Some(r) = search(probe, bound, phi, delta, &p, graze_tol, min_width) {
             return Some(r);
         }
-        phi += delta;
-        p = probe(phi);
+        let next = phi + delta;
+        let pn = probe(next);
+        if let Some(r) = hidden_crossing(probe, phi, &p, next, &pn) {
+            return Some(r);
+        }
+        phi = next;
+        p = pn;
     }
     None
 }
@@ -131,8 +136,8 @@ fn search(
     if (0..2).all(|k| !open[k] || pa.dh.abs() > b * delta) {
         let pb = probe(a + delta);
         let mut best: Option<Root> = None;
-        for k in 0..2 {
-            if open[k] && (pb.h[k] == 0.0 || (pa.h[k] > 0.0) != (pb.h[k] > 0.0)) {
+        for (k, _) in open.iter().enumerate().filter(|(_, o)| **o) {
+            if pb.h[k] == 0.0 || (pa.h[k] > 0.0) != (pb.h[k] > 0.0) {
                 let r = Root {
                     phase: polish(probe, k, a, a + delta, pa.h[k]),
                     which: k,
@@ -149,10 +154,7 @@ fn search(
         let pb = probe(a + delta);
         // Among the open functions, the one that changes sign, else the one closest to zero.
         let mut best: Option<Root> = None;
-        for k in 0..2 {
-            if !open[k] {
-                continue;
-            }
+        for (k, _) in open.iter().enumerate().filter(|(_, o)| **o) {
             let crosses = pb.h[k] == 0.0 || (pa.h[k] > 0.0) != (pb.h[k] > 0.0);
             // Rounding in h can hide a root that lies within a few ulps of
             // a + delta (the next interval, starting just past it, would then
@@ -200,7 +202,39 @@ fn search(
     }
     let mid = a + half;
     let pm = probe(mid);
+    if let Some(r) = hidden_crossing(probe, a, pa, mid, &pm) {
+        return Some(r);
+    }
     search(probe, bound, mid, delta - half, &pm, graze_tol, min_width)
+}
+
+/// A sign change of `h_k` between `a` and `b` after the search found no root
+/// in `(a, b]`: the exclusion test reasons about the exact interval
+/// `(a, a + Δ]`, but the next interval starts at the *rounded* `a + Δ`, and
+/// `h` carries absolute rounding errors that the test's relative slack does
+/// not cover. A root in that sub-ulp gap is a crossing all the same.
+fn hidden_crossing(
+    probe: &impl Fn(f64) -> Probe,
+    a: f64,
+    pa: &Probe,
+    b: f64,
+    pb: &Probe,
+) -> Option<Root> {
+    let mut best: Option<Root> = None;
+    for k in 0..2 {
+        let (ha, hb) = (pa.h[k], pb.h[k]);
+        if ha.is_finite() && ha != 0.0 && (hb == 0.0 || (ha > 0.0) != (hb > 0.0)) {
+            let r = Root {
+                phase: polish(probe, k, a, b, ha),
+                which: k,
+                kind: RootKind::Crossing,
+            };
+            if best.is_none_or(|x| r.phase < x.phase) {
+                best = Some(r);
+            }
+        }
+    }
+    best
 }
 
 /// The extremum of `h_k` in `[a, a + delta]` near a tangency: a graze if

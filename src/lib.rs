@@ -21,6 +21,8 @@ pub mod attractor;
 pub mod crossing;
 pub mod describe;
 pub mod homogeneous;
+pub mod map;
+pub mod map_plot;
 pub mod model;
 pub mod models;
 pub mod motion;

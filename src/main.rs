@@ -1,10 +1,22 @@
 //! The `stickslip` command-line tool.
 #![forbid(unsafe_code)]
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
-use stickslip::{describe, models, Model, ModelVisitor, ParamSet};
+use clap::{Args, Parser, Subcommand};
+use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::motion::{self, OrbitError};
+use stickslip::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::report::{History, Report};
+use stickslip::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
+use stickslip::structure::Structure;
+use stickslip::{describe, models, MappingKind, Model, ModelVisitor, ParamSet};
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+/// Samples per forcing period in `--csv` and `--plot`.
+const SAMPLES_PER_PERIOD: usize = 400;
 
 /// Exact periodic motions of friction oscillators, from model files.
 #[derive(Parser)]
@@ -30,6 +42,62 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Solve a given mapping structure for its periodic motion (Newton),
+    /// check it (admissibility) and give its stability.
+    Orbit {
+        /// Model name (`paper`), or `model::scene`.
+        #[arg(long, default_value = "paper")]
+        model: String,
+        /// The structure, e.g. `P_{3_31 0_11 3_13 4_33}` (applied right to left).
+        #[arg(long)]
+        structure: String,
+        /// Parameter values, e.g. `--set W=3.7,Q0=70`.
+        #[arg(long, value_delimiter = ',')]
+        set: Vec<String>,
+        /// Forcing periods per cycle (the period N of the motion).
+        #[arg(long, default_value_t = 1)]
+        periods: u32,
+        /// The first switching point `W t,x` (the start of the first mapping
+        /// applied); the others follow by simulation. Without it the structure
+        /// is seeded by simulation.
+        #[arg(long, allow_hyphen_values = true)]
+        guess: Option<String>,
+        #[command(flatten)]
+        output: OutputArgs,
+    },
+    /// Simulate from a start state until the motion settles; name and refine
+    /// the periodic motion, or certify that none touches a boundary (NM).
+    Simulate {
+        /// Model name (`paper`), or `model::scene`.
+        #[arg(long, default_value = "paper")]
+        model: String,
+        /// Parameter values, e.g. `--set W=5,Q0=70`.
+        #[arg(long, value_delimiter = ',')]
+        set: Vec<String>,
+        /// Start state `x,v,W t` (default: rest, `0,0,0`).
+        #[arg(long, allow_hyphen_values = true)]
+        from: Option<String>,
+        /// Forcing periods simulated at most (default 3000).
+        #[arg(long)]
+        periods: Option<u32>,
+        #[command(flatten)]
+        output: OutputArgs,
+    },
+}
+
+/// Output options of `orbit` and `simulate`.
+#[derive(Args, Clone)]
+struct OutputArgs {
+    /// Print JSON (schema in the README, "Periodic motions").
+    #[arg(long)]
+    json: bool,
+    /// Draw the six panels of the motion into FILE (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+    /// Write one period of the motion (or the last simulated forcing period
+    /// for NM) as CSV: `t,Wt,x,v,a,domain,F`.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
 }
 
 /// Parse `NAME=VALUE` pairs.
@@ -47,6 +115,316 @@ fn parse_assignments(items: &[String]) -> Result<Vec<(String, f64)>, String> {
             Ok((name.trim().to_string(), v))
         })
         .collect()
+}
+
+/// Parse `N` comma-separated numbers named by `what`.
+fn parse_numbers<const N: usize>(text: &str, what: &str) -> Result<[f64; N], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != N {
+        return Err(format!(
+            "`{text}`: expected {what} ({N} comma-separated numbers)"
+        ));
+    }
+    let mut out = [0.0f64; N];
+    for (o, p) in out.iter_mut().zip(&parts) {
+        *o = p
+            .parse()
+            .map_err(|_| format!("`{text}`: `{p}` is not a number (expected {what})"))?;
+        if !o.is_finite() {
+            return Err(format!("`{text}`: `{p}` is not finite (expected {what})"));
+        }
+    }
+    Ok(out)
+}
+
+/// The model's parameters: its defaults with `set` applied, checked.
+fn params<M: Model>(set: &[(String, f64)]) -> Result<M::Params, String> {
+    let pairs: Vec<(&str, f64)> = set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+    M::Params::from_pairs(M::INFO, &pairs).map_err(|e| e.to_string())
+}
+
+/// What a command prints, notes on stderr, and whether it failed.
+struct Outcome {
+    stdout: String,
+    notes: Vec<String>,
+    failure: Option<String>,
+}
+
+impl Outcome {
+    fn ok(stdout: String) -> Self {
+        Self {
+            stdout,
+            notes: Vec::new(),
+            failure: None,
+        }
+    }
+}
+
+/// Where the flow of mapping `index` runs.
+fn location_of<M: Model>(index: usize) -> Location {
+    let mi = &M::INFO.mappings[index];
+    match (mi.kind, mi.domain) {
+        (MappingKind::Stick, _) | (_, None) => Location::Stick,
+        (_, Some(j)) => Location::Domain(j),
+    }
+}
+
+fn location_name<M: Model>(location: Location) -> String {
+    match location {
+        Location::Domain(j) => format!("domain {}", M::INFO.domains[j].label),
+        Location::Stick => "stick".to_string(),
+    }
+}
+
+/// Switching points of `structure` from its first one, `(W t, x)` on the
+/// first mapping's start boundary: simulate from there and read the next
+/// events. Fails (with the reason) when the flow does not follow the structure.
+fn seed_from_guess<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    phase: f64,
+    x: f64,
+) -> Result<Vec<SwitchingPoint>, String> {
+    let info = M::INFO;
+    let steps = structure.steps();
+    let m = steps.len();
+    let first = &info.mappings[steps[0]];
+    let v0 = sim.velocity(first.from);
+    let location = location_of::<M>(steps[0]);
+    if let Location::Domain(j) = location {
+        let acc = M::normal_field(sim.params(), j, x, v0, phase)[0];
+        let into = if info.domains[j].lower == Some(first.from) {
+            1.0
+        } else {
+            -1.0
+        };
+        // Leaving into the domain, strictly (NaN included in the refusal).
+        if (into * acc).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return Err(format!(
+                "there the flow does not leave {} into domain {}, where {} runs (acceleration {acc:.3e})",
+                info.boundaries[first.from].label, info.domains[j].label, first.name
+            ));
+        }
+    }
+    let mut seg = Segment {
+        x,
+        v: v0,
+        phase,
+        location,
+        search_from: phase,
+    };
+    let limit = phase + TAU * (2 * structure.periods() + 1) as f64;
+    let mut points = vec![SwitchingPoint { phase, x }];
+    let mut k = 0;
+    while k < m {
+        let mi = &info.mappings[steps[k]];
+        let Some((event, next)) = sim.next_event(&seg, limit).map_err(|e| e.to_string())? else {
+            return Err(format!(
+                "the simulated motion does not reach the end of mapping {k} ({}) in time",
+                mi.name
+            ));
+        };
+        seg = next;
+        if event.kind == EventKind::Graze {
+            continue;
+        }
+        let want = location_of::<M>(steps[(k + 1) % m]);
+        if event.boundary != mi.to || event.after != want {
+            return Err(format!(
+                "the simulated motion ends mapping {k} ({}) on {} and goes on in {}, but the structure needs {} and then {}",
+                mi.name,
+                info.boundaries[event.boundary].label,
+                location_name::<M>(event.after),
+                info.boundaries[mi.to].label,
+                location_name::<M>(want)
+            ));
+        }
+        if k + 1 < m {
+            points.push(SwitchingPoint {
+                phase: event.phase,
+                x: event.x,
+            });
+        }
+        k += 1;
+    }
+    Ok(points)
+}
+
+/// Print `report`; for a motion, write the CSV and the figure.
+fn finish(
+    report: &Report,
+    history: impl FnOnce() -> Result<History, String>,
+    title: String,
+    output: &OutputArgs,
+    mut outcome: Outcome,
+) -> Result<Outcome, String> {
+    outcome.stdout = if output.json {
+        report.to_json()
+    } else {
+        format!("{}{report}", outcome.stdout)
+    };
+    if output.csv.is_some() || output.plot.is_some() {
+        if report.is_motion() {
+            let history = history()?;
+            if let Some(path) = &output.csv {
+                std::fs::write(path, history.to_csv())
+                    .map_err(|e| format!("cannot write `{}`: {e}", path.display()))?;
+                outcome.notes.push(format!("wrote {}", path.display()));
+            }
+            if let Some(path) = &output.plot {
+                stickslip::plot::plot(&history, &title, path)?;
+                outcome.notes.push(format!("wrote {}", path.display()));
+            }
+        } else {
+            outcome
+                .notes
+                .push("no CSV or figure written: there is no motion to show".to_string());
+        }
+    }
+    outcome.failure = report.failure();
+    Ok(outcome)
+}
+
+/// The parameters the user set, for figure titles.
+fn set_text(set: &[(String, f64)]) -> String {
+    if set.is_empty() {
+        "default parameters".to_string()
+    } else {
+        set.iter()
+            .map(|(n, v)| format!("{n} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+struct Orbit {
+    set: Vec<(String, f64)>,
+    structure: String,
+    periods: u32,
+    guess: Option<(f64, f64)>,
+    output: OutputArgs,
+}
+
+impl ModelVisitor for Orbit {
+    type Output = Result<Outcome, String>;
+    fn visit<M: Model>(self) -> Self::Output {
+        let info = M::INFO;
+        let p = params::<M>(&self.set)?;
+        let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
+        let structure = Structure::parse(info, &self.structure, self.periods)
+            .map_err(|e| format!("structure `{}`: {e}", self.structure))?;
+        let mut outcome = Outcome::ok(String::new());
+        let from_guess = match self.guess {
+            None => None,
+            Some((phase, x)) => match seed_from_guess(&sim, &structure, phase, x) {
+                Ok(points) => Some(points),
+                Err(why) => {
+                    outcome.notes.push(format!(
+                        "note: --guess {phase},{x}: {why}; seeding by simulation instead"
+                    ));
+                    None
+                }
+            },
+        };
+        let points = match from_guess {
+            Some(points) => points,
+            None => attractor::seed(&sim, &structure).ok_or_else(|| {
+                format!(
+                    "no simulated motion follows {}; give the first switching point with --guess W t,x",
+                    structure.notation(info)
+                )
+            })?,
+        };
+        let motion = motion::solve(&sim, structure, points, NewtonOptions::default());
+        let report = Report::of_motion(&sim, &motion);
+        let title = format!(
+            "{}: {}, N = {} ({})",
+            info.name,
+            motion.structure.notation(info),
+            motion.structure.periods(),
+            set_text(&self.set)
+        );
+        finish(
+            &report,
+            || Ok(History::of_motion(&sim, &motion, SAMPLES_PER_PERIOD)),
+            title,
+            &self.output,
+            outcome,
+        )
+    }
+}
+
+struct Simulate {
+    set: Vec<(String, f64)>,
+    from: [f64; 3],
+    periods: Option<u32>,
+    output: OutputArgs,
+}
+
+impl ModelVisitor for Simulate {
+    type Output = Result<Outcome, String>;
+    fn visit<M: Model>(self) -> Self::Output {
+        let info = M::INFO;
+        let p = params::<M>(&self.set)?;
+        let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
+        let [x, v, phase] = self.from;
+        let start = sim.start(x, v, phase).map_err(|e| e.to_string())?;
+        let mut opts = AttractorOptions::default();
+        if let Some(k) = self.periods {
+            if k == 0 {
+                return Err("--periods must be at least 1".to_string());
+            }
+            opts.max_periods = k;
+        }
+        let outcome = Outcome::ok(format!(
+            "simulated from (x, v, W t) = ({x}, {v}, {phase}) ({})\n",
+            set_text(&self.set)
+        ));
+        let set = set_text(&self.set);
+        let motion = match attractor::find(&sim, start, opts) {
+            Ok(Attractor::Periodic(motion)) => motion,
+            Err(OrbitError::Inadmissible(motion)) => *motion,
+            Ok(Attractor::NoMotion(nm)) => {
+                let report = Report::of_no_motion::<M>(&nm);
+                let title = format!(
+                    "{}: NM, no boundary contact (last simulated forcing period; {set})",
+                    info.name
+                );
+                let history = || {
+                    let from = (nm.certified_at - TAU).max(phase);
+                    let seg = sim.run(start, from, |_| {}).map_err(|e| e.to_string())?;
+                    History::simulated(&sim, seg, from, nm.certified_at, SAMPLES_PER_PERIOD)
+                        .map_err(|e| e.to_string())
+                };
+                return finish(&report, history, title, &self.output, outcome);
+            }
+            Err(OrbitError::NotConverged(t)) => {
+                let report = Report::of_termination::<M>(&t, None);
+                return finish(
+                    &report,
+                    || Err("there is no motion".to_string()),
+                    String::new(),
+                    &self.output,
+                    outcome,
+                );
+            }
+            Err(e) => return Err(e.to_string()),
+        };
+        let report = Report::of_motion(&sim, &motion);
+        let title = format!(
+            "{}: {}, N = {} (found by simulation; {set})",
+            info.name,
+            motion.structure.notation(info),
+            motion.structure.periods(),
+        );
+        finish(
+            &report,
+            || Ok(History::of_motion(&sim, &motion, SAMPLES_PER_PERIOD)),
+            title,
+            &self.output,
+            outcome,
+        )
+    }
 }
 
 struct Describe {
@@ -68,7 +446,13 @@ impl ModelVisitor for Describe {
     }
 }
 
-fn run(cli: Cli) -> Result<String, String> {
+fn run(cli: Cli) -> Result<Outcome, String> {
+    // A figure format we cannot write is an error before any work.
+    if let Command::Orbit { output, .. } | Command::Simulate { output, .. } = &cli.command {
+        if let Some(path) = &output.plot {
+            stickslip::plot::Format::of(path)?;
+        }
+    }
     match cli.command {
         Command::Models => {
             let mut out = String::new();
@@ -87,29 +471,81 @@ fn run(cli: Cli) -> Result<String, String> {
                     out.push_str(&format!("{:<20} {}\n", "", first_doc));
                 }
             }
-            Ok(out)
+            Ok(Outcome::ok(out))
         }
         Command::Describe { model, set, json } => {
             let set = parse_assignments(&set)?;
-            models::visit(&model, Describe { set, json }).unwrap_or_else(|| {
-                let names: Vec<&str> = models::ALL.iter().map(|i| i.name).collect();
-                Err(format!(
-                    "unknown model `{model}`; compiled-in: {}",
-                    names.join(", ")
-                ))
-            })
+            models::visit(&model, Describe { set, json })
+                .unwrap_or_else(|| Err(unknown_model(&model)))
+                .map(Outcome::ok)
+        }
+        Command::Orbit {
+            model,
+            structure,
+            set,
+            periods,
+            guess,
+            output,
+        } => {
+            let set = parse_assignments(&set)?;
+            let guess = guess
+                .map(|g| parse_numbers::<2>(&g, "W t,x").map(|[phase, x]| (phase, x)))
+                .transpose()?;
+            let orbit = Orbit {
+                set,
+                structure,
+                periods,
+                guess,
+                output,
+            };
+            models::visit(&model, orbit).unwrap_or_else(|| Err(unknown_model(&model)))
+        }
+        Command::Simulate {
+            model,
+            set,
+            from,
+            periods,
+            output,
+        } => {
+            let set = parse_assignments(&set)?;
+            let from = match from {
+                Some(f) => parse_numbers::<3>(&f, "x,v,W t")?,
+                None => [0.0; 3],
+            };
+            let simulate = Simulate {
+                set,
+                from,
+                periods,
+                output,
+            };
+            models::visit(&model, simulate).unwrap_or_else(|| Err(unknown_model(&model)))
         }
     }
 }
 
+fn unknown_model(model: &str) -> String {
+    let names: Vec<&str> = models::ALL.iter().map(|i| i.name).collect();
+    format!("unknown model `{model}`; compiled-in: {}", names.join(", "))
+}
+
 fn main() -> ExitCode {
     match run(Cli::parse()) {
-        Ok(out) => {
+        Ok(outcome) => {
+            let out = outcome.stdout;
             print!("{out}");
             if !out.ends_with('\n') {
                 println!();
             }
-            ExitCode::SUCCESS
+            for note in &outcome.notes {
+                eprintln!("{note}");
+            }
+            match outcome.failure {
+                None => ExitCode::SUCCESS,
+                Some(reason) => {
+                    eprintln!("error: {reason}");
+                    ExitCode::FAILURE
+                }
+            }
         }
         Err(e) => {
             eprintln!("error: {e}");

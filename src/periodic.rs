@@ -247,12 +247,11 @@ impl<M: Model> PeriodicSolver<M> {
     ) -> Result<f64, SingularStep> {
         self.direction(p, points)?;
         let mut lambda = 1.0;
-        let m = points.len();
         loop {
-            for k in 0..m {
-                self.trial[k] = SwitchingPoint {
-                    x: points[k].x + lambda * self.delta[k][0],
-                    phase: points[k].phase + lambda * self.delta[k][1],
+            for ((t, pt), d) in self.trial.iter_mut().zip(points.iter()).zip(&self.delta) {
+                *t = SwitchingPoint {
+                    x: pt.x + lambda * d[0],
+                    phase: pt.phase + lambda * d[1],
                 };
             }
             let r = self.residual(p, &self.trial);
@@ -282,7 +281,6 @@ impl<M: Model> PeriodicSolver<M> {
             self.structure.len(),
             "one switching point per mapping"
         );
-        let m = points.len();
         let mut evals = std::mem::take(&mut self.evals);
         let mut r = self.evaluate_all(p, points, &mut evals);
         self.evals = evals;
@@ -307,10 +305,10 @@ impl<M: Model> PeriodicSolver<M> {
                     reason: s.reason.into(),
                 };
             }
-            for k in 0..m {
-                self.trial[k] = SwitchingPoint {
-                    x: points[k].x + self.delta[k][0],
-                    phase: points[k].phase + self.delta[k][1],
+            for ((t, pt), d) in self.trial.iter_mut().zip(points.iter()).zip(&self.delta) {
+                *t = SwitchingPoint {
+                    x: pt.x + d[0],
+                    phase: pt.phase + d[1],
                 };
             }
             let mut trial_evals = std::mem::take(&mut self.trial_evals);
@@ -326,10 +324,10 @@ impl<M: Model> PeriodicSolver<M> {
             let mut lambda = 0.5;
             let mut accepted = None;
             while lambda >= 1e-3 {
-                for k in 0..m {
-                    self.trial[k] = SwitchingPoint {
-                        x: points[k].x + lambda * self.delta[k][0],
-                        phase: points[k].phase + lambda * self.delta[k][1],
+                for ((t, pt), d) in self.trial.iter_mut().zip(points.iter()).zip(&self.delta) {
+                    *t = SwitchingPoint {
+                        x: pt.x + lambda * d[0],
+                        phase: pt.phase + lambda * d[1],
                     };
                 }
                 let rl = self.residual(p, &self.trial);

@@ -298,8 +298,8 @@ impl<M: Model> Probe<'_, M> {
     }
 }
 
-/// Locate where the margin of `watch` crosses zero between `good` (margin
-/// > 0, solution `good_pts`) and `bad`, by regula falsi (Illinois) safeguarded
+/// Locate where the margin of `watch` crosses zero between `good` (positive
+/// margin, solution `good_pts`) and `bad`, by regula falsi (Illinois) safeguarded
 /// with bisection; each evaluation re-solves the motion from the nearest good
 /// solution. Returns the last good value and its points.
 fn locate<M: Model>(
