@@ -34,6 +34,7 @@ pub mod simulate;
 pub mod stability;
 pub mod structure;
 pub mod sweep;
+pub mod sweep_plot;
 
 pub use model::{
     BoundaryInfo, Coefficients, DomainInfo, MappingEval, MappingInfo, MappingKind, Model,

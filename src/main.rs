@@ -83,6 +83,30 @@ enum Command {
         #[command(flatten)]
         output: OutputArgs,
     },
+    /// Follow periodic motions along one parameter; locate every transition
+    /// (grazing, stick onset and vanishing, passable onset, |λ| = 1) and what
+    /// lives beyond it; report coexisting motions.
+    Sweep(SweepArgs),
+}
+
+/// Output options of `orbit` and `simulate`.
+#[derive(Args, Clone)]
+struct SweepArgs {
+    /// Model name (`paper`), or `model::scene`.
+    #[arg(long, default_value = "paper")]
+    model: String,
+    /// The swept parameter and its grid, `NAME=from:to:count` (e.g. `W=0.2:9:200`).
+    #[arg(long)]
+    param: String,
+    /// The other parameters, e.g. `--set Q0=70`.
+    #[arg(long, value_delimiter = ',')]
+    set: Vec<String>,
+    /// Print JSON (schema in the README, "Bifurcations and maps").
+    #[arg(long)]
+    json: bool,
+    /// Draw the bifurcation diagram into FILE (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
 }
 
 /// Output options of `orbit` and `simulate`.
@@ -520,6 +544,118 @@ fn run(cli: Cli) -> Result<Outcome, String> {
             };
             models::visit(&model, simulate).unwrap_or_else(|| Err(unknown_model(&model)))
         }
+        Command::Sweep(args) => {
+            if let Some(path) = &args.plot {
+                stickslip::plot::Format::of(path)?;
+            }
+            let model = args.model.clone();
+            models::visit(&model, SweepCmd { args }).unwrap_or_else(|| Err(unknown_model(&model)))
+        }
+    }
+}
+
+/// Parse `NAME=from:to:count`.
+fn parse_range(text: &str) -> Result<(String, f64, f64, usize), String> {
+    let bad = || format!("`{text}`: expected NAME=from:to:count, e.g. W=0.2:9:200");
+    let (name, range) = text.split_once('=').ok_or_else(bad)?;
+    let parts: Vec<&str> = range.split(':').map(str::trim).collect();
+    let [a, b, n] = parts.as_slice() else {
+        return Err(bad());
+    };
+    let a: f64 = a.parse().map_err(|_| bad())?;
+    let b: f64 = b.parse().map_err(|_| bad())?;
+    let n: usize = n.parse().map_err(|_| bad())?;
+    Ok((name.trim().to_string(), a, b, n))
+}
+
+struct SweepCmd {
+    args: SweepArgs,
+}
+
+impl ModelVisitor for SweepCmd {
+    type Output = Result<Outcome, String>;
+    fn visit<M: Model>(self) -> Self::Output {
+        let set = parse_assignments(&self.args.set)?;
+        let (name, from, to, count) = parse_range(&self.args.param)?;
+        let base = params::<M>(&set)?;
+        let sw = stickslip::sweep::sweep::<M>(base, &name, from, to, count, Default::default())
+            .map_err(|e| e.to_string())?;
+        if let Some(path) = &self.args.plot {
+            let title = format!("{} sweep of {name} ({})", M::INFO.name, set_text(&set));
+            stickslip::sweep_plot::plot_sweep(&sw, &title, path)?;
+        }
+        let stdout = if self.args.json {
+            let points: Vec<serde_json::Value> = sw
+                .points
+                .iter()
+                .map(|p| {
+                    let mut o = serde_json::Map::new();
+                    o.insert(name.clone(), serde_json::json!(p.value));
+                    o.insert("motions".into(), serde_json::json!(p.motions));
+                    serde_json::Value::Object(o)
+                })
+                .collect();
+            let transitions: Vec<serde_json::Value> = sw
+                .transitions
+                .iter()
+                .map(|t| {
+                    let mut o = serde_json::Map::new();
+                    o.insert(name.clone(), serde_json::json!(t.value));
+                    o.insert("from".into(), serde_json::json!(t.from));
+                    o.insert("to".into(), serde_json::json!(t.to));
+                    o.insert("kind".into(), serde_json::json!(t.kind));
+                    o.insert("boundary".into(), serde_json::json!(t.boundary));
+                    serde_json::Value::Object(o)
+                })
+                .collect();
+            let doc =
+                serde_json::json!({ "param": name, "points": points, "transitions": transitions });
+            serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?
+        } else {
+            let mut out = format!(
+                "sweep of {name} over [{from}, {to}] ({count} points), {}\n\n",
+                set_text(&set)
+            );
+            out.push_str("transitions:\n");
+            for t in &sw.transitions {
+                out.push_str(&format!(
+                    "  {name} = {:<18.12} {:<16} {} -> {}{}\n",
+                    t.value,
+                    serde_json::to_value(t.kind)
+                        .ok()
+                        .and_then(|v| v.as_str().map(String::from))
+                        .unwrap_or_default(),
+                    t.from,
+                    t.to,
+                    t.boundary
+                        .as_ref()
+                        .map_or(String::new(), |b| format!(" (on {b})"))
+                ));
+            }
+            out.push_str("\nmotions:\n");
+            for p in &sw.points {
+                let names: Vec<String> = p
+                    .motions
+                    .iter()
+                    .map(|m| {
+                        let n = if m.n > 1 {
+                            format!("^{}", m.n)
+                        } else {
+                            String::new()
+                        };
+                        let st = if m.stable { "" } else { " (unstable)" };
+                        format!("{}{n}{st}", m.structure)
+                    })
+                    .collect();
+                out.push_str(&format!(
+                    "  {name} = {:<10.6} {}\n",
+                    p.value,
+                    names.join("  +  ")
+                ));
+            }
+            out
+        };
+        Ok(Outcome::ok(stdout))
     }
 }
 

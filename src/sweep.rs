@@ -68,6 +68,7 @@ pub struct MotionSummary {
     #[serde(rename = "N")]
     pub n: u32,
     /// `W t_0 mod 2π` of the first switching point.
+    #[serde(rename = "start_Wt")]
     pub start_wt: f64,
     /// `x_0`.
     pub start_x: f64,
