@@ -70,7 +70,7 @@ fn interior_margin<M: Model>(
 ) -> Option<(f64, usize)> {
     let dom = M::INFO.domains[j];
     let p = sim.params();
-    let n = 48;
+    let n = 24;
     let h = (end - seg.phase) / n as f64;
     let mut best: Option<(f64, usize)> = None;
     let mut consider = |v: f64, extremum: bool| {
@@ -90,23 +90,38 @@ fn interior_margin<M: Model>(
     };
     let accel = |phi: f64| {
         let (x, v) = sim.state_at(seg, phi);
-        M::normal_field(p, j, x, v, phi)[0]
+        M::normal_field(p, j, x, v, phi)
     };
-    let mut prev = accel(seg.phase);
+    let w = sim.oscillator().frequency;
+    let mut prev = accel(seg.phase)[0];
     for i in 1..=n {
         let phi = seg.phase + h * i as f64;
-        let a = accel(phi);
+        let a = accel(phi)[0];
         if (a > 0.0) != (prev > 0.0) {
+            // An extremum of v: safeguarded Newton on the acceleration
+            // (its rate in phase is DF / W).
             let (mut lo, mut hi) = (phi - h, phi);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if (accel(mid) > 0.0) == (prev > 0.0) {
-                    lo = mid;
+            let mut t = 0.5 * (lo + hi);
+            for _ in 0..50 {
+                let [at, rate] = accel(t);
+                if (at > 0.0) == (prev > 0.0) {
+                    lo = t;
                 } else {
-                    hi = mid;
+                    hi = t;
                 }
+                let newton = t - at * w / rate;
+                let next = if rate != 0.0 && newton > lo && newton < hi {
+                    newton
+                } else {
+                    0.5 * (lo + hi)
+                };
+                if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0) {
+                    t = next;
+                    break;
+                }
+                t = next;
             }
-            consider(sim.state_at(seg, 0.5 * (lo + hi)).1, true);
+            consider(sim.state_at(seg, t).1, true);
         }
         if i < n {
             consider(sim.state_at(seg, phi).1, false);

@@ -87,6 +87,106 @@ enum Command {
     /// (grazing, stick onset and vanishing, passable onset, |λ| = 1) and what
     /// lives beyond it; report coexisting motions.
     Sweep(SweepArgs),
+    /// Which motions exist at each point of a grid over two parameters (the
+    /// paper's Fig. 11); all cores, resumable, shardable for a cluster.
+    Map(MapArgs),
+    /// Join the outputs of `map --shard k/n` into one map (and figure),
+    /// identical to a single run.
+    Merge {
+        /// Shard outputs.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// The merged map.
+        #[arg(long, value_name = "FILE")]
+        out: PathBuf,
+        /// Draw the map into FILE (.svg or .png).
+        #[arg(long, value_name = "FILE")]
+        plot: Option<PathBuf>,
+    },
+}
+
+/// Options of `map`.
+#[derive(Args, Clone)]
+struct MapArgs {
+    /// Model name (`paper`), or `model::scene`.
+    #[arg(long, default_value = "paper")]
+    model: String,
+    /// Horizontal axis, `NAME=from:to:count` (e.g. `W=0.2:8:100`).
+    #[arg(long)]
+    x: String,
+    /// Vertical axis, `NAME=from:to:count` (e.g. `Q0=0:180:100`).
+    #[arg(long)]
+    y: String,
+    /// The other parameters, e.g. `--set d=0.1`.
+    #[arg(long, value_delimiter = ',')]
+    set: Vec<String>,
+    /// The map file, written point by point as they finish.
+    #[arg(long, value_name = "FILE", default_value = "map.csv")]
+    out: PathBuf,
+    /// Continue an interrupted run from its output file.
+    #[arg(long)]
+    resume: bool,
+    /// Compute only part `k` of `n` (`k/n`, k from 0), for a cluster job array.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Draw the map into FILE (.svg or .png) when it is complete.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+}
+
+struct MapCmd {
+    args: MapArgs,
+}
+
+impl ModelVisitor for MapCmd {
+    type Output = Result<Outcome, String>;
+    fn visit<M: Model>(self) -> Self::Output {
+        use stickslip::map::{plot_map, run_map, GridAxis, MapOptions, Shard};
+        let set = parse_assignments(&self.args.set)?;
+        let x = GridAxis::parse_for::<M>(&self.args.x).map_err(|e| e.to_string())?;
+        let y = GridAxis::parse_for::<M>(&self.args.y).map_err(|e| e.to_string())?;
+        let base = params::<M>(&set)?;
+        let shard = self
+            .args
+            .shard
+            .as_deref()
+            .map(Shard::parse)
+            .transpose()
+            .map_err(|e| e.to_string())?;
+        let opts = MapOptions {
+            resume: self.args.resume,
+            shard,
+            progress: true,
+            max_points: None,
+        };
+        let summary =
+            run_map::<M>(&base, &x, &y, &self.args.out, &opts).map_err(|e| e.to_string())?;
+        if let Some(plot) = &self.args.plot {
+            plot_map(&self.args.out, plot).map_err(|e| e.to_string())?;
+        }
+        Ok(Outcome::ok(summary_text(&summary, &self.args.out)))
+    }
+}
+
+fn summary_text(s: &stickslip::map::Summary, out: &std::path::Path) -> String {
+    let mut text = format!(
+        "{}: {} of {} grid points ({} computed now, {} already done) in {:.2} s{}\n",
+        out.display(),
+        s.already_done + s.computed,
+        s.shard_points,
+        s.computed,
+        s.already_done,
+        s.elapsed.as_secs_f64(),
+        if s.complete {
+            ""
+        } else {
+            " — incomplete: run again with --resume"
+        }
+    );
+    for (label, count) in &s.labels {
+        text.push_str(&format!("  {count:>6}  {label}\n"));
+    }
+    text
 }
 
 /// Output options of `orbit` and `simulate`.
@@ -543,6 +643,23 @@ fn run(cli: Cli) -> Result<Outcome, String> {
                 output,
             };
             models::visit(&model, simulate).unwrap_or_else(|| Err(unknown_model(&model)))
+        }
+        Command::Map(args) => {
+            if let Some(path) = &args.plot {
+                stickslip::plot::Format::of(path)?;
+            }
+            let model = args.model.clone();
+            models::visit(&model, MapCmd { args }).unwrap_or_else(|| Err(unknown_model(&model)))
+        }
+        Command::Merge { inputs, out, plot } => {
+            if let Some(path) = &plot {
+                stickslip::plot::Format::of(path)?;
+            }
+            let summary = stickslip::map::merge(&inputs, &out).map_err(|e| e.to_string())?;
+            if let Some(plot) = &plot {
+                stickslip::map::plot_map(&out, plot).map_err(|e| e.to_string())?;
+            }
+            Ok(Outcome::ok(summary_text(&summary, &out)))
         }
         Command::Sweep(args) => {
             if let Some(path) = &args.plot {

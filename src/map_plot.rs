@@ -5,28 +5,13 @@
 //! hatched grey. SVG or PNG by the file's extension; text in DejaVu Sans,
 //! compiled in like [`crate::plot`]'s.
 
-use std::collections::HashMap;
-use std::path::Path;
-use std::sync::OnceLock;
-
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::{register_font, FontStyle};
+use std::collections::HashMap;
+use std::path::Path;
 
 use crate::map::{MapError, MapFile, PointResult};
-use crate::plot::Format;
-
-static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
-const FAMILY: &str = "sans-serif";
-
-fn register() -> Result<(), String> {
-    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
-    DONE.get_or_init(|| {
-        register_font(FAMILY, FontStyle::Normal, FONT)
-            .map_err(|_| "the built-in font could not be loaded".to_string())
-    })
-    .clone()
-}
+use crate::plot::{register, Format, FAMILY};
 
 const WIDTH: u32 = 1500;
 const HEIGHT: u32 = 900;
@@ -231,9 +216,8 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, map: &MapFile) -> Res
         for ix in 0..nx {
             let i = iy * nx + ix;
             // Not between computed and missing points: that is no region border.
-            let differ = |j: usize| {
-                labels[i] != labels[j] && cells[i].is_some() && cells[j].is_some()
-            };
+            let differ =
+                |j: usize| labels[i] != labels[j] && cells[i].is_some() && cells[j].is_some();
             if ix + 1 < nx && differ(i + 1) {
                 borders.push(vec![(xe[ix + 1], ye[iy]), (xe[ix + 1], ye[iy + 1])]);
             }

@@ -95,8 +95,20 @@ fn describe_violations(v: &[Violation]) -> String {
 pub fn solve<M: Model>(
     sim: &Simulator<M>,
     structure: Structure,
+    points: Vec<SwitchingPoint>,
+    opts: NewtonOptions,
+) -> Motion {
+    solve_with(sim, structure, points, opts, true)
+}
+
+/// Like [`solve`]; with `check = false` the admissibility conditions are not
+/// evaluated (`violations` stays empty: the caller checks them itself).
+pub fn solve_with<M: Model>(
+    sim: &Simulator<M>,
+    structure: Structure,
     mut points: Vec<SwitchingPoint>,
     opts: NewtonOptions,
+    check: bool,
 ) -> Motion {
     let mut solver = PeriodicSolver::<M>::new(structure);
     let termination = solver.solve(sim.params(), &mut points, opts);
@@ -111,7 +123,12 @@ pub fn solve<M: Model>(
     let (dp, stability, violations) = if termination.converged() {
         let dp = solver.poincare_jacobian(sim.params(), &points).ok();
         let st = dp.as_ref().map(Stability::of);
-        (dp, st, violations(sim, solver.structure(), &points))
+        let v = if check {
+            violations(sim, solver.structure(), &points)
+        } else {
+            Vec::new()
+        };
+        (dp, st, v)
     } else {
         (None, None, Vec::new())
     };

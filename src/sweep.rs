@@ -19,7 +19,7 @@ use serde::Serialize;
 use crate::admissible::{conditions, ViolationKind};
 use crate::attractor::{self, Attractor, AttractorOptions, NoMotion};
 use crate::model::Model;
-use crate::motion::{solve, Motion, OrbitError};
+use crate::motion::{solve, solve_with, Motion, OrbitError};
 use crate::param::{ParamError, ParamSet};
 use crate::periodic::{NewtonOptions, SwitchingPoint};
 use crate::simulate::{Location, Segment, SimOptions, Simulator};
@@ -249,11 +249,12 @@ impl<M: Model> Probe<'_, M> {
     fn solve(&self, value: f64, guess: &[SwitchingPoint]) -> Option<(Motion, Simulator<M>)> {
         let p = with(self.base, self.index, value).ok()?;
         let sim = Simulator::<M>::new(p, SimOptions::default()).ok()?;
-        let m = solve(
+        let m = solve_with(
             &sim,
             self.structure.clone(),
             guess.to_vec(),
             NewtonOptions::default(),
+            false,
         );
         m.termination.converged().then_some((m, sim))
     }
