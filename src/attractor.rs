@@ -120,7 +120,7 @@ pub fn no_motion_certificate<M: Model>(
 }
 
 /// The smallest cycle at the end of `events`: `(m events, N periods)`.
-fn detect_cycle(events: &[Event], max_cycle: usize) -> Option<(usize, u32)> {
+fn detect_cycle(events: &[Event], max_cycle: usize, tol: f64) -> Option<(usize, u32)> {
     let n = events.len();
     'len: for m in 1..=max_cycle {
         if n < 2 * m + 1 {
@@ -138,22 +138,66 @@ fn detect_cycle(events: &[Event], max_cycle: usize) -> Option<(usize, u32)> {
             }
             let ds = a.phase - b.phase;
             let scale = 1.0 + a.x.abs().max(b.x.abs());
-            if (a.x - b.x).abs() > 1e-7 * scale {
+            if (a.x - b.x).abs() > tol * scale {
                 continue 'len;
             }
             match shift {
                 None => shift = Some(ds),
-                Some(s) if (ds - s).abs() > 1e-7 * s.abs().max(1.0) => continue 'len,
+                Some(s) if (ds - s).abs() > tol * s.abs().max(1.0) => continue 'len,
                 _ => {}
             }
         }
         let s = shift?;
         let periods = (s / TAU).round();
-        if periods >= 1.0 && (s - periods * TAU).abs() < 1e-6 * s.max(1.0) {
+        if periods >= 1.0 && (s - periods * TAU).abs() < 10.0 * tol * s.max(1.0) {
             return Some((m, periods as u32));
         }
     }
     None
+}
+
+/// The cycle of the last `m` events, as a structure of period `periods`
+/// started at its canonical mapping, solved by Newton from the events.
+fn candidate<M: Model>(
+    sim: &Simulator<M>,
+    events: &[Event],
+    m: usize,
+    periods: u32,
+    newton: NewtonOptions,
+) -> Result<Motion, OrbitError> {
+    let info = M::INFO;
+    let n = events.len();
+    let window = &events[n - 1 - m..];
+    let mut steps = Vec::with_capacity(m);
+    let mut points = Vec::with_capacity(m);
+    for i in 0..m {
+        let idx = mapping_between::<M>(&window[i], &window[i + 1]).ok_or_else(|| {
+            OrbitError::Guess(format!(
+                "the simulated motion uses a mapping that `{}` does not generate (after the event at W t = {})",
+                info.name, window[i].phase
+            ))
+        })?;
+        steps.push(idx);
+        points.push(SwitchingPoint {
+            phase: window[i].phase,
+            x: window[i].x,
+        });
+    }
+    let structure = Structure::from_indices(info, &steps, periods)?;
+    let (canonical, offset) = structure.canonical(info);
+    // Points past the window's end are the window's first ones, one cycle later.
+    let cycle = TAU * periods as f64;
+    let rotated: Vec<SwitchingPoint> = (0..m)
+        .map(|k| {
+            let pt = points[(offset + k) % m];
+            let later = if offset + k >= m { cycle } else { 0.0 };
+            SwitchingPoint {
+                phase: pt.phase + later,
+                x: pt.x,
+            }
+        })
+        .collect();
+    Ok(solve(sim, canonical, rotated, newton))
 }
 
 /// Simulate from `start` until the motion settles; name and refine it.
@@ -162,15 +206,17 @@ pub fn find<M: Model>(
     start: Segment,
     opts: AttractorOptions,
 ) -> Result<Attractor, OrbitError> {
-    let info = M::INFO;
     let mut seg = start;
     let mut events: Vec<Event> = Vec::with_capacity(4 * opts.max_cycle + 8);
     let keep = 4 * opts.max_cycle + 4;
-    let chunk = 10.0 * TAU;
+    let mut tried_loose: Vec<(usize, u32)> = Vec::new();
+    let mut chunk = 4.0 * TAU;
     let mut phase = start.phase;
     let end = start.phase + opts.max_periods as f64 * TAU;
     while phase < end {
         phase += chunk;
+        // Short chunks first (most motions settle fast), longer ones later.
+        chunk = (chunk * 1.5).min(20.0 * TAU);
         let mut count = 0usize;
         seg = sim.run(seg, phase, |e| {
             if e.kind != EventKind::Graze {
@@ -190,46 +236,32 @@ pub fn find<M: Model>(
             }
             continue;
         }
-        let Some((m, periods)) = detect_cycle(&events, opts.max_cycle) else {
-            continue;
-        };
-        let n = events.len();
-        let window = &events[n - 1 - m..];
-        let mut steps = Vec::with_capacity(m);
-        let mut points = Vec::with_capacity(m);
-        for i in 0..m {
-            let idx = mapping_between::<M>(&window[i], &window[i + 1]).ok_or_else(|| {
-                OrbitError::Guess(format!(
-                    "the simulated motion uses a mapping that `{}` does not generate (after the event at W t = {})",
-                    info.name, window[i].phase
-                ))
-            })?;
-            steps.push(idx);
-            points.push(SwitchingPoint {
-                phase: window[i].phase,
-                x: window[i].x,
-            });
-        }
-        let structure = Structure::from_indices(info, &steps, periods)?;
-        let (canonical, offset) = structure.canonical(info);
-        // Points past the window's end are the window's first ones, one cycle later.
-        let cycle = TAU * periods as f64;
-        let rotated: Vec<SwitchingPoint> = (0..m)
-            .map(|k| {
-                let pt = points[(offset + k) % m];
-                let later = if offset + k >= m { cycle } else { 0.0 };
-                SwitchingPoint {
-                    phase: pt.phase + later,
-                    x: pt.x,
+        // A loose match after a short transient is refined by Newton and
+        // accepted if it is an admissible, stable motion; a strict match
+        // (the transient has decayed to 1e-7) is accepted if admissible.
+        let mut last = None;
+        for (tol, need_stable) in [(1e-4, true), (1e-7, false)] {
+            let Some((m, periods)) = detect_cycle(&events, opts.max_cycle, tol) else {
+                continue;
+            };
+            // A loose candidate that failed is not tried again.
+            if need_stable {
+                if tried_loose.contains(&(m, periods)) {
+                    continue;
                 }
-            })
-            .collect();
-        let motion = solve(sim, canonical, rotated, opts.newton);
-        if motion.is_admissible() {
-            return Ok(Attractor::Periodic(primitive(sim, motion, opts.newton)));
+                tried_loose.push((m, periods));
+            }
+            let motion = candidate(sim, &events, m, periods, opts.newton)?;
+            let stable = motion.stability.is_some_and(|s| s.is_stable());
+            if motion.is_admissible() && (stable || !need_stable) {
+                return Ok(Attractor::Periodic(primitive(sim, motion, opts.newton)));
+            }
+            last = Some(motion);
         }
         if phase + chunk >= end {
-            return motion.into_result().map(Attractor::Periodic);
+            if let Some(motion) = last {
+                return motion.into_result().map(Attractor::Periodic);
+            }
         }
     }
     Err(OrbitError::Unsettled {
