@@ -48,7 +48,11 @@ use stickslip::sweep::MotionSummary;
 /// periodic solution of the dynamics, checked independently of Newton).
 fn resimulate(w: f64, m: &MotionSummary) -> Result<(), String> {
     let info = Paper::INFO;
-    let p = Params { W: w, Q0: 70.0, ..Params::default() };
+    let p = Params {
+        W: w,
+        Q0: 70.0,
+        ..Params::default()
+    };
     let sim = Simulator::<Paper>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
     if m.structure == "NM" {
         let start = sim.start(0.0, 0.0, 0.0).map_err(|e| e.to_string())?;
@@ -61,7 +65,13 @@ fn resimulate(w: f64, m: &MotionSummary) -> Result<(), String> {
     let first = info.mappings[s.steps()[0]];
     let location = first.domain.map_or(Location::Stick, Location::Domain);
     let p0 = m.points[0];
-    let seg = Segment { x: p0.x, v: sim.velocity(first.from), phase: p0.phase, location, search_from: p0.phase };
+    let seg = Segment {
+        x: p0.x,
+        v: sim.velocity(first.from),
+        phase: p0.phase,
+        location,
+        search_from: p0.phase,
+    };
     let end = p0.phase + 2.0 * std::f64::consts::PI * m.n as f64;
     let mut events = Vec::new();
     sim.run(seg, end + 1e-6, |e| {
@@ -87,7 +97,10 @@ fn resimulate(w: f64, m: &MotionSummary) -> Result<(), String> {
 
 #[test]
 fn every_reported_motion_survives_an_independent_simulation() {
-    let base = Params { Q0: 70.0, ..Params::default() };
+    let base = Params {
+        Q0: 70.0,
+        ..Params::default()
+    };
     let s = sweep::<Paper>(base, "W", 0.2, 9.0, 45, SweepOptions::default()).expect("sweep runs");
     let mut checked = 0;
     for p in &s.points {
@@ -104,19 +117,31 @@ fn every_reported_motion_survives_an_independent_simulation() {
 fn a_narrow_bistable_window_reports_both_motions() {
     // Between the stick onset and the stick vanishing near W = 3.948 both the
     // motion with stick and the one without coexist (SPEC §10: flow barrier).
-    let base = Params { Q0: 70.0, ..Params::default() };
-    let s = sweep::<Paper>(base, "W", 3.94, 3.955, 16, SweepOptions::default()).expect("sweep runs");
+    let base = Params {
+        Q0: 70.0,
+        ..Params::default()
+    };
+    let s =
+        sweep::<Paper>(base, "W", 3.94, 3.955, 16, SweepOptions::default()).expect("sweep runs");
     let both: Vec<_> = s
         .points
         .iter()
         .filter(|p| {
-            p.motions.iter().any(|m| m.structure == "P_{3_31 1_11 3_13 4_33}")
-                && p.motions.iter().any(|m| m.structure == "P_{3_31 0_11 1_11 3_13 4_33}")
+            p.motions
+                .iter()
+                .any(|m| m.structure == "P_{3_31 1_11 3_13 4_33}")
+                && p.motions
+                    .iter()
+                    .any(|m| m.structure == "P_{3_31 0_11 1_11 3_13 4_33}")
         })
         .collect();
     assert!(!both.is_empty(), "no bistable point in {:#?}", s.points);
     for p in both {
-        assert!(p.value > 3.9478 && p.value < 3.9487, "bistable at W = {}", p.value);
+        assert!(
+            p.value > 3.9478 && p.value < 3.9487,
+            "bistable at W = {}",
+            p.value
+        );
         for m in &p.motions {
             assert!(m.stable, "W = {}: {} unstable", p.value, m.structure);
             resimulate(p.value, m).unwrap_or_else(|e| panic!("{e}"));

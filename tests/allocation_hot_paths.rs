@@ -1,0 +1,203 @@
+//! The documented allocation-free hot paths allocate nothing, counted by a
+//! global allocator: after constructing a `PeriodicSolver` and a
+//! `Simulator`, one Newton direction, one damped Newton step (and the
+//! residual and Poincaré-map Jacobian), and `Simulator::next_event` for
+//! domain segments and for stick segments.
+//!
+//! The count is kept per thread, so tests running in parallel (the test
+//! harness's own threads) cannot disturb each other's counts.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use stickslip::models::paper::{Paper, Params};
+use stickslip::periodic::{PeriodicSolver, SwitchingPoint};
+use stickslip::simulate::{Location, SimOptions, Simulator};
+use stickslip::structure::Structure;
+use stickslip::Model;
+
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() {
+    // `try_with`: the slot may be gone while a thread shuts down.
+    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+}
+
+// Delegates to the system allocator and only counts.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        count();
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made on this thread by `f`, and its result.
+fn allocations<T>(f: impl FnOnce() -> T) -> (usize, T) {
+    let before = ALLOCATIONS.with(|c| c.get());
+    let out = std::hint::black_box(f());
+    (ALLOCATIONS.with(|c| c.get()) - before, out)
+}
+
+fn params(w: f64) -> Params {
+    Params {
+        W: w,
+        Q0: 70.0,
+        ..Params::default()
+    }
+}
+
+/// Reference motions (SPEC reference cases): structure, W, switching points.
+fn cases() -> Vec<(&'static str, f64, Vec<SwitchingPoint>)> {
+    let pts = |v: &[(f64, f64)]| {
+        v.iter()
+            .map(|&(phase, x)| SwitchingPoint { phase, x })
+            .collect::<Vec<_>>()
+    };
+    vec![
+        (
+            "P_{3_33 4_33}",
+            3.0,
+            pts(&[
+                (5.487535830832371, 0.5815233766718289),
+                (10.32665293971474, -0.3002260919008602),
+            ]),
+        ),
+        (
+            "P_{3_31 0_11 3_13 4_33}",
+            3.7,
+            pts(&[
+                (5.891765347235473, 0.8799569068931978),
+                (9.967084195729768, -0.6490335088410385),
+                (10.618565545807334, -0.23784693296713225),
+                (11.21264563490298, 0.2438396257590662),
+            ]),
+        ),
+        (
+            "P_{3_31 1_12 2_22 1_21 3_13 4_33}",
+            5.0,
+            pts(&[
+                (0.44978275444676297, 2.3444143268199222),
+                (3.845154388424461, -2.3096270701834074),
+                (3.966288968452073, -2.255080621936518),
+                (4.108275319339592, -2.148470024813479),
+                (6.462410323345743, 2.183586772560424),
+                (6.591544731401805, 2.280615346848513),
+            ]),
+        ),
+    ]
+}
+
+#[test]
+fn newton_direction_and_step_allocate_nothing() {
+    for (text, w, reference) in cases() {
+        let p = params(w);
+        let structure = Structure::parse(Paper::INFO, text, 1).expect("structure");
+        let mut solver = PeriodicSolver::<Paper>::new(structure);
+        // A perturbed guess, so that the steps do real work (and backtrack).
+        let mut points: Vec<SwitchingPoint> = reference
+            .iter()
+            .enumerate()
+            .map(|(k, pt)| SwitchingPoint {
+                phase: pt.phase + if k % 2 == 0 { 2e-2 } else { -2e-2 },
+                x: pt.x - 1e-2,
+            })
+            .collect();
+        let (n, dir) = allocations(|| solver.direction(&p, &points));
+        assert!(dir.is_ok(), "{text}: {dir:?}");
+        assert_eq!(
+            n, 0,
+            "{text}: PeriodicSolver::direction allocated {n} times"
+        );
+        let (n, r0) = allocations(|| solver.residual(&p, &points));
+        assert_eq!(n, 0, "{text}: PeriodicSolver::residual allocated {n} times");
+        let mut r = r0;
+        for it in 0..8 {
+            let (n, next) = allocations(|| solver.step(&p, &mut points, r));
+            assert_eq!(
+                n, 0,
+                "{text}: PeriodicSolver::step (iteration {it}) allocated {n} times"
+            );
+            r = next.expect("a regular step");
+        }
+        assert!(
+            r < 1e-10 && r < r0,
+            "{text}: Newton converges ({r0:e} -> {r:e})"
+        );
+        let (n, dp) = allocations(|| solver.poincare_jacobian(&p, &points));
+        assert!(dp.is_ok());
+        assert_eq!(n, 0, "{text}: poincare_jacobian allocated {n} times");
+        // The error path too: a degenerate guess (all points equal) is singular
+        // or not finite, and says so without allocating.
+        let flat = vec![points[0]; points.len()];
+        let (n, _) = allocations(|| solver.direction(&p, &flat));
+        assert_eq!(
+            n, 0,
+            "{text}: direction on a degenerate guess allocated {n} times"
+        );
+    }
+}
+
+#[test]
+fn next_event_allocates_nothing_in_domains_and_in_stick() {
+    // W = 3.7: the steady motion sticks once per period; W = 5: every domain.
+    for w in [3.7, 5.0, 3.0] {
+        let sim = Simulator::<Paper>::new(params(w), SimOptions::default()).expect("valid");
+        let mut seg = sim.start(0.0, 0.0, 0.0).expect("start");
+        let limit = 60.0 * std::f64::consts::TAU;
+        let (mut domain_steps, mut stick_steps) = (0usize, 0usize);
+        loop {
+            let location = seg.location;
+            let (n, next) = allocations(|| sim.next_event(&seg, limit));
+            assert_eq!(n, 0, "W = {w}: next_event from {seg:?} allocated {n} times");
+            match location {
+                Location::Domain(_) => domain_steps += 1,
+                Location::Stick => stick_steps += 1,
+            }
+            match next.expect("no simulation error") {
+                Some((_, s)) => seg = s,
+                None => break,
+            }
+        }
+        assert!(domain_steps > 20, "W = {w}: {domain_steps} domain steps");
+        if w == 3.7 {
+            assert!(stick_steps > 20, "W = {w}: {stick_steps} stick steps");
+        }
+        // A whole run through `run` with a non-allocating callback, too.
+        let start = sim.start(0.0, 0.0, 0.0).expect("start");
+        let mut events = 0usize;
+        let (n, end) = allocations(|| sim.run(start, limit, |_| events += 1));
+        assert!(end.is_ok());
+        assert_eq!(n, 0, "W = {w}: Simulator::run allocated {n} times");
+        assert!(events > 20);
+    }
+}
+
+#[test]
+fn the_counter_counts() {
+    // The checks above can fail: an allocation on this thread is seen.
+    let (n, v) = allocations(|| vec![1.0f64; 16]);
+    assert!(n >= 1);
+    drop(v);
+    let sim = Simulator::<Paper>::new(params(3.7), SimOptions::default());
+    let (n, _) = allocations(|| Simulator::<Paper>::new(params(3.7), SimOptions::default()));
+    assert!(n >= 1, "constructing a simulator allocates its tables");
+    drop(sim);
+}
