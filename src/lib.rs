@@ -31,6 +31,7 @@ pub mod periodic;
 pub mod plot;
 pub mod report;
 pub mod simulate;
+pub mod smooth;
 pub mod stability;
 pub mod structure;
 pub mod sweep;
