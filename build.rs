@@ -30,6 +30,8 @@ fn main() {
     let mut all = Vec::new();
     let mut visit_arms = String::new();
     let mut source_arms = String::new();
+    let mut smooth_arms = String::new();
+    let mut smooth_all = Vec::new();
     for file in &files {
         println!("cargo:rerun-if-changed={}", file.display());
         let origin = format!(
@@ -72,6 +74,16 @@ fn main() {
                 )
                 .expect("write to String");
                 for inst in &generated.instances {
+                    if inst.smooth {
+                        writeln!(
+                            smooth_arms,
+                            "        \"{}\" => Some(visitor.visit::<{}::{}>()),",
+                            inst.name, inst.path, inst.type_name
+                        )
+                        .expect("write to String");
+                        smooth_all.push(format!("&{}::SMOOTH_INFO", inst.path));
+                        continue;
+                    }
                     all.push(format!("&{}::INFO", inst.path));
                     writeln!(
                         visit_arms,
@@ -97,9 +109,14 @@ fn main() {
          pub static ALL: &[&crate::ModelInfo] = &[{all}];\n\n\
          /// Run `visitor` with the model or scene called `name` (`paper`, `paper::sweep_w`).\n\
          pub fn visit<V: crate::ModelVisitor>(name: &str, visitor: V) -> Option<V::Output> {{\n    match name {{\n{visit_arms}        _ => None,\n    }}\n}}\n\n\
+         /// Every compiled-in model with a smooth friction law.\n\
+         pub static SMOOTH: &[&crate::smooth::SmoothInfo] = &[{smooth_all}];\n\n\
+         /// Run `visitor` with the smooth-law model called `name`.\n\
+         pub fn visit_smooth<V: crate::smooth::SmoothVisitor>(name: &str, visitor: V) -> Option<V::Output> {{\n    match name {{\n{smooth_arms}        _ => None,\n    }}\n}}\n\n\
          /// The generated source of model `name`.\n\
          pub fn generated_source(name: &str) -> Option<&'static str> {{\n    match name {{\n{source_arms}        _ => None,\n    }}\n}}\n",
-        all = all.join(", ")
+        all = all.join(", "),
+        smooth_all = smooth_all.join(", ")
     );
     write_if_changed(&out.join("models.rs"), &code);
 }

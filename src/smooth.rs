@@ -43,3 +43,12 @@ pub trait SmoothModel: Copy + Default + Send + Sync + 'static {
     /// `[f(v), f'(v)]`, kinetic friction per unit mass and its slope, for `v ≠ V`.
     fn kinetic(p: &Self::Params, v: f64) -> [f64; 2];
 }
+
+/// Something to do with a smooth-law model chosen at run time by name
+/// (see [`crate::models::visit_smooth`]).
+pub trait SmoothVisitor {
+    /// What it returns.
+    type Output;
+    /// Do it with model `M`.
+    fn visit<M: SmoothModel>(self) -> Self::Output;
+}

@@ -42,6 +42,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
     let mut derived: Vec<Derived> = Vec::new();
     let mut seen: HashMap<String, Span> = HashMap::new();
     let mut oscillator = None;
+    let mut law_ast: Option<crate::parse::OscillatorAst> = None;
     let mut boundaries: Vec<Boundary> = Vec::new();
     let mut domain_asts = Vec::new();
     let mut scene_asts = Vec::new();
@@ -178,6 +179,13 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
             }
             Item::Domain(d) => domain_asts.push(d),
             Item::Scene(s) => scene_asts.push(s),
+            Item::Law(l) => {
+                if law_ast.is_some() {
+                    diags.error(l.span, "the law is declared twice");
+                } else {
+                    law_ast = Some(l);
+                }
+            }
         }
     }
 
@@ -190,6 +198,36 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         }
         return None;
     };
+    if let Some(l) = law_ast {
+        if let Some(b) = boundaries.first() {
+            diags.error(b.span, "a model with a smooth `law` gets its boundaries and domains from its `pieces` scenes");
+        }
+        for d in &domain_asts {
+            diags.error(d.label.span(), "a model with a smooth `law` gets its boundaries and domains from its `pieces` scenes");
+        }
+        let law = check_law(l, diags)?;
+        let mut model = Model {
+            name: ast.name.to_string(),
+            docs: ast.docs,
+            params,
+            derived,
+            oscillator,
+            boundaries: Vec::new(),
+            domains: Vec::new(),
+            scenes: Vec::new(),
+            mappings: Vec::new(),
+            law: Some(law),
+        };
+        if diags.len() > errors_before {
+            return None;
+        }
+        crate::pieces::check_smooth(&model, diags);
+        model.scenes = scene_asts
+            .into_iter()
+            .filter_map(|s| check_scene(&model, s, diags))
+            .collect();
+        return (diags.len() == errors_before).then_some(model);
+    }
     if boundaries.is_empty() {
         diags.error(
             ast.name.span(),
@@ -256,6 +294,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         domains,
         scenes: Vec::new(),
         mappings: Vec::new(),
+        law: None,
     };
     // From here on every check runs even when an earlier one failed, so that
     // all of a file's errors are reported at once; a check is skipped only
@@ -376,6 +415,52 @@ fn constant(
             None
         }
     }
+}
+
+/// The checks of a generated piecewise-linear model: affine laws, continuity
+/// away from the stick boundary, static bound above the kinetic levels.
+pub fn check_pieces(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+    for (j, dm) in model.domains.iter().enumerate() {
+        check_affine(inst, dm, j, diags);
+    }
+    check_continuity(model, inst, diags);
+    check_static_bound(model, inst, diags);
+}
+
+fn check_law(l: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<crate::model::Law> {
+    const KEYS: [&str; 4] = ["belt", "stick", "range", "kinetic"];
+    let mut found: [Option<Expr>; 4] = Default::default();
+    for (key, value) in l.fields {
+        let k = key.to_string();
+        match KEYS.iter().position(|&x| x == k) {
+            Some(i) if found[i].is_some() => {
+                diags.error(key.span(), format!("`{k}` is given twice"))
+            }
+            Some(i) => found[i] = Some(value),
+            None => diags.error(
+                key.span(),
+                format!("unknown law field `{k}`; expected belt, stick, range, kinetic"),
+            ),
+        }
+    }
+    let missing: Vec<&str> = KEYS
+        .iter()
+        .zip(&found)
+        .filter(|(_, f)| f.is_none())
+        .map(|(k, _)| *k)
+        .collect();
+    if !missing.is_empty() {
+        diags.error(l.span, format!("the law lacks {}", missing.join(", ")));
+        return None;
+    }
+    let [belt, stick, range, kinetic] = found.map(|f| f.expect("checked above"));
+    Some(crate::model::Law {
+        belt,
+        stick,
+        range,
+        kinetic,
+        span: l.span,
+    })
 }
 
 fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<Oscillator> {
@@ -783,12 +868,37 @@ fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics
             Err(msg) => diags.error(lit.span(), msg),
         }
     }
+    let pieces = match &s.pieces {
+        None if model.law.is_some() => {
+            diags.error(
+                s.name.span(),
+                "a scene of a model with a smooth `law` needs `pieces: N;`",
+            );
+            None
+        }
+        None => None,
+        Some(lit) if model.law.is_none() => {
+            diags.error(
+                lit.span(),
+                "`pieces` builds a piecewise-linear model from a smooth `law`; this model has none",
+            );
+            None
+        }
+        Some(lit) => match lit.base10_parse::<u32>() {
+            Ok(n) if (2..=128).contains(&n) && n % 2 == 0 => Some(n),
+            _ => {
+                diags.error(lit.span(), "`pieces` is an even number from 2 to 128 (half on each side of the belt speed)");
+                None
+            }
+        },
+    };
     (diags.len() == before).then(|| Scene {
         name: s.name.to_string(),
         docs: s.docs,
         free,
         structures,
         structure_text: texts,
+        pieces,
     })
 }
 

@@ -290,6 +290,249 @@ fn bound_tokens(op: BoundOp) -> TokenStream {
     }
 }
 
+/// The pieces of a `Params` struct over the free parameters `free`.
+struct ParamsCode {
+    names_lit: Vec<String>,
+    get_arms: Vec<TokenStream>,
+    set_arms: Vec<TokenStream>,
+    fields: Vec<TokenStream>,
+    defaults: Vec<TokenStream>,
+    param_infos: Vec<TokenStream>,
+    free_idx: Vec<TokenStream>,
+}
+
+fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
+    let fields = free
+        .iter()
+        .map(|&i| {
+            let p = &model.params[i];
+            let name = format_ident!("{}", p.name);
+            let mut lines = p.docs.clone();
+            lines.push(format!("Default: `{}`.", p.default));
+            let d = doc(&lines);
+            quote!(#d pub #name: f64,)
+        })
+        .collect();
+    let defaults = free
+        .iter()
+        .map(|&i| {
+            let p = &model.params[i];
+            let name = format_ident!("{}", p.name);
+            let (v, _) = literal(p.default);
+            quote!(#name: #v,)
+        })
+        .collect();
+    let names_lit = free.iter().map(|&i| model.params[i].name.clone()).collect();
+    let get_arms = free
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| {
+            let name = format_ident!("{}", model.params[i].name);
+            quote!(#k => self.#name,)
+        })
+        .collect();
+    let set_arms = free
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| {
+            let name = format_ident!("{}", model.params[i].name);
+            quote!(#k => self.#name = value,)
+        })
+        .collect();
+    let param_infos = model
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let name = &p.name;
+            let (def, _) = literal(p.default);
+            let bounds = p.bounds.iter().map(|(op, b)| {
+                let op = bound_tokens(*op);
+                let (b, _) = literal(*b);
+                quote!((#op, #b))
+            });
+            let docs = p.docs.join(" ");
+            let is_free = free.contains(&i);
+            quote!(::stickslip::ParamInfo { name: #name, default: #def, bounds: &[#(#bounds),*], doc: #docs, free: #is_free },)
+        })
+        .collect();
+    let free_idx = free.iter().map(|&i| quote!(#i,)).collect();
+    ParamsCode {
+        names_lit,
+        get_arms,
+        set_arms,
+        fields,
+        defaults,
+        param_infos,
+        free_idx,
+    }
+}
+
+/// Items of a model with a smooth law: its `Params`, a static `INFO` (no
+/// boundaries: the law is not piecewise) and a type implementing
+/// `SmoothModel` whose `kinetic` gives the law and its exact slope.
+fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
+    let law = model.law.as_ref().expect("a smooth model");
+    let free: Vec<usize> = (0..model.params.len()).collect();
+    let mut inst = lower_instance(model, &free, diags);
+    let nodes = crate::pieces::lower_law(&mut inst, law, diags);
+    let pnames: Vec<String> = free.iter().map(|&i| model.params[i].name.clone()).collect();
+    let ParamsCode {
+        names_lit,
+        get_arms,
+        set_arms,
+        fields,
+        defaults,
+        param_infos,
+        free_idx,
+    } = params_code(model, &free);
+    let g = &mut inst.graph;
+    let slope = g
+        .diff(nodes.kinetic, crate::instance::LAW_V)
+        .unwrap_or_else(|_| g.constant(f64::NAN));
+    let v = g.var(crate::instance::LAW_V);
+    let eps = g.constant(1e-12);
+    let range_eps = g.mul(nodes.range, eps);
+    let above = g.add(nodes.belt, range_eps);
+    let below = g.sub(nodes.belt, range_eps);
+    let f_above = g.substitute(nodes.kinetic, crate::instance::LAW_V, above);
+    let f_below = g.substitute(nodes.kinetic, crate::instance::LAW_V, below);
+    let _ = v;
+    let (kstmts, kouts) = straight_line(
+        &inst.graph,
+        &pnames,
+        &[(crate::instance::LAW_V, "v")],
+        &[nodes.kinetic, slope],
+    );
+    let (kf, kd) = (&kouts[0], &kouts[1]);
+    let osc = [
+        inst.mass,
+        inst.damping,
+        inst.stiffness,
+        inst.forcing,
+        inst.frequency,
+    ];
+    let (ostmts, oouts) = straight_line(&inst.graph, &pnames, &[], &osc);
+    let (om, od, oc, oa, ow) = (&oouts[0], &oouts[1], &oouts[2], &oouts[3], &oouts[4]);
+    let (bstmts, bouts) = straight_line(&inst.graph, &pnames, &[], &[nodes.belt, nodes.stick]);
+    let (belt, stick) = (&bouts[0], &bouts[1]);
+    let cond = [
+        inst.mass,
+        inst.stiffness,
+        inst.frequency,
+        nodes.stick,
+        f_above,
+        f_below,
+    ];
+    let (cstmts, couts) = straight_line(&inst.graph, &pnames, &[], &cond);
+    let (cm, cs, cw, cst, cfa, cfb) = (
+        &couts[0], &couts[1], &couts[2], &couts[3], &couts[4], &couts[5],
+    );
+    let name = &model.name;
+    let type_ident = format_ident!("{}", camel(&model.name));
+    let docs = model.docs.join("\n");
+    let law_text = quote::ToTokens::to_token_stream(&law.kinetic).to_string();
+    let range_val = {
+        let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
+        inst.graph.eval(nodes.range, &defaults, &[])
+    };
+    let (range_lit, _) = literal(range_val);
+    let mut lines = model.docs.clone();
+    lines.push(format!(
+        "Model `{}` with a smooth kinetic law: `{law_text}`.",
+        model.name
+    ));
+    let type_doc = doc(&lines);
+    quote! {
+        /// Run-time parameters of the smooth model.
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[allow(non_snake_case)]
+        pub struct Params { #(#fields)* }
+
+        impl Default for Params {
+            fn default() -> Self { Self { #(#defaults)* } }
+        }
+
+        impl ::stickslip::ParamSet for Params {
+            const NAMES: &'static [&'static str] = &[#(#names_lit),*];
+            fn get(&self, index: usize) -> f64 {
+                match index { #(#get_arms)* _ => f64::NAN }
+            }
+            fn set(&mut self, index: usize, value: f64) {
+                match index { #(#set_arms)* _ => {} }
+            }
+            fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
+                let p = self;
+                ::stickslip::param::check_values(self, &INFO)?;
+                #cstmts
+                ::stickslip::param::check_conditions(&INFO, ::stickslip::param::Conditions {
+                    mass: #cm,
+                    stiffness: #cs,
+                    frequency: #cw,
+                    velocities: &[],
+                    stick: Some((#cst, #cfa, #cfb)),
+                })
+            }
+        }
+
+        /// Static description (no boundaries: the law is smooth; see the `pieces` scenes).
+        pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
+            name: #name,
+            model: #name,
+            scene: None,
+            doc: #docs,
+            params: &[#(#param_infos)*],
+            free: &[#(#free_idx)*],
+            boundaries: &[],
+            domains: &[],
+            mappings: &[],
+            structures: &[],
+        };
+
+        /// Static description of the law.
+        pub static SMOOTH_INFO: ::stickslip::smooth::SmoothInfo = ::stickslip::smooth::SmoothInfo {
+            name: #name,
+            doc: #docs,
+            params: INFO.params,
+            free: INFO.free,
+            law: #law_text,
+            range: #range_lit,
+        };
+
+        #type_doc
+        #[derive(Clone, Copy, Debug, Default)]
+        pub struct #type_ident;
+
+        impl ::stickslip::smooth::SmoothModel for #type_ident {
+            type Params = Params;
+            const INFO: &'static ::stickslip::smooth::SmoothInfo = &SMOOTH_INFO;
+            #[inline]
+            fn oscillator(p: &Params) -> ::stickslip::Oscillator {
+                #ostmts
+                ::stickslip::Oscillator { mass: #om, damping: #od, stiffness: #oc, amplitude: #oa, frequency: #ow }
+            }
+            #[inline]
+            fn belt(p: &Params) -> f64 {
+                #bstmts
+                let _ = #stick;
+                #belt
+            }
+            #[inline]
+            fn static_bound(p: &Params) -> f64 {
+                #bstmts
+                let _ = #belt;
+                #stick
+            }
+            /// The law and its exact derivative in `v`.
+            #[inline]
+            fn kinetic(p: &Params, v: f64) -> [f64; 2] {
+                #kstmts
+                [#kf, #kd]
+            }
+        }
+    }
+}
+
 /// Items of one instance: the full model (`scene = None`) or a scene.
 fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) -> TokenStream {
     let (free, mapping_filter, type_name, display_name): (
@@ -327,42 +570,15 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let type_ident = format_ident!("{}", type_name);
 
     // --- Params ---------------------------------------------------------
-    let fields = free.iter().map(|&i| {
-        let p = &model.params[i];
-        let name = format_ident!("{}", p.name);
-        let mut lines = p.docs.clone();
-        lines.push(format!("Default: `{}`.", p.default));
-        let d = doc(&lines);
-        quote!(#d pub #name: f64,)
-    });
-    let defaults = free.iter().map(|&i| {
-        let p = &model.params[i];
-        let name = format_ident!("{}", p.name);
-        let (v, _) = literal(p.default);
-        quote!(#name: #v,)
-    });
-    let names_lit: Vec<&str> = pnames.iter().map(String::as_str).collect();
-    let get_arms = free.iter().enumerate().map(|(k, &i)| {
-        let name = format_ident!("{}", model.params[i].name);
-        quote!(#k => self.#name,)
-    });
-    let set_arms = free.iter().enumerate().map(|(k, &i)| {
-        let name = format_ident!("{}", model.params[i].name);
-        quote!(#k => self.#name = value,)
-    });
-    let param_infos = model.params.iter().enumerate().map(|(i, p)| {
-        let name = &p.name;
-        let (def, _) = literal(p.default);
-        let bounds = p.bounds.iter().map(|(op, b)| {
-            let op = bound_tokens(*op);
-            let (b, _) = literal(*b);
-            quote!((#op, #b))
-        });
-        let docs = p.docs.join(" ");
-        let is_free = free.contains(&i);
-        quote!(::stickslip::ParamInfo { name: #name, default: #def, bounds: &[#(#bounds),*], doc: #docs, free: #is_free },)
-    });
-    let free_idx = free.iter().map(|&i| quote!(#i,));
+    let ParamsCode {
+        names_lit,
+        get_arms,
+        set_arms,
+        fields,
+        defaults,
+        param_infos,
+        free_idx,
+    } = params_code(model, &free);
 
     // --- Conditions checked at run time ---------------------------------
     let vel: Vec<Id> = inst.boundary_velocity.clone();
@@ -844,9 +1060,33 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 /// The module body for a checked model: the full instance, then one
 /// submodule per scene. Returns formatted source with the `@generated` header.
 pub fn emit(model: &Model, options: &Options, diags: &mut Diagnostics) -> Option<String> {
-    let mut items = instance_items(model, None, diags);
+    let mut items = if model.law.is_some() {
+        smooth_items(model, diags)
+    } else {
+        instance_items(model, None, diags)
+    };
     for (s, sc) in model.scenes.iter().enumerate() {
-        let body = instance_items(model, Some(s), diags);
+        let body = match sc.pieces {
+            Some(n) => {
+                // A piecewise-linear model of the law, as its own instance.
+                let pl = crate::pieces::build(model, sc, n);
+                let mut check = Diagnostics::new();
+                let all: Vec<usize> = (0..pl.params.len()).collect();
+                let inst = lower_instance(&pl, &all, &mut check);
+                crate::check::check_pieces(&pl, &inst, &mut check);
+                for d in check.iter() {
+                    diags.error(
+                        d.span,
+                        format!(
+                            "in the {n}-piece model of scene `{}`: {}",
+                            sc.name, d.message
+                        ),
+                    );
+                }
+                instance_items(&pl, Some(0), diags)
+            }
+            None => instance_items(model, Some(s), diags),
+        };
         let m = format_ident!("{}", sc.name);
         let d = doc1(&format!("Scene `{}` of model `{}`.", sc.name, model.name));
         items.extend(quote! {

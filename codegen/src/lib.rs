@@ -26,6 +26,7 @@ pub mod lower;
 pub mod model;
 #[allow(missing_docs)]
 pub mod parse;
+pub mod pieces;
 
 use std::path::Path;
 use std::str::FromStr;
@@ -101,8 +102,11 @@ pub struct InstanceName {
     pub name: String,
     /// Rust path relative to the models module (same as `name`).
     pub path: String,
-    /// The type implementing `Model` (`Paper`, `SweepW`).
+    /// The type implementing `Model` (`Paper`, `SweepW`), or `SmoothModel`
+    /// for a model with a smooth law (`smooth`).
     pub type_name: String,
+    /// Whether the type implements `SmoothModel` rather than `Model`.
+    pub smooth: bool,
 }
 
 fn instance_names(model: &Model) -> Vec<InstanceName> {
@@ -110,6 +114,7 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
         name: model.name.clone(),
         path: model.name.clone(),
         type_name: emit::camel(&model.name),
+        smooth: model.law.is_some(),
     }];
     for s in &model.scenes {
         let p = format!("{}::{}", model.name, s.name);
@@ -117,6 +122,7 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
             name: p.clone(),
             path: p,
             type_name: emit::camel(&s.name),
+            smooth: false,
         });
     }
     out

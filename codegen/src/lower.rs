@@ -141,6 +141,7 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                 "sin" => Some(Graph::sin),
                 "cos" => Some(Graph::cos),
                 "abs" => Some(Graph::abs),
+                "sign" => Some(Graph::sign),
                 _ => None,
             };
             if let Some(f) = unary {
@@ -194,7 +195,7 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
             }
             diags.error(
                 call.func.span(),
-                format!("unknown function `{name}`; available: exp, ln, sqrt, sin, cos, abs, powi"),
+                format!("unknown function `{name}`; available: exp, ln, sqrt, sin, cos, abs, sign, powi"),
             );
             graph.constant(0.0)
         }

@@ -103,6 +103,22 @@ pub struct Scene {
     pub structures: Vec<Vec<usize>>,
     /// The structures as written.
     pub structure_text: Vec<String>,
+    /// For a model with a smooth law: build an N-piece model.
+    pub pieces: Option<u32>,
+}
+
+/// A smooth kinetic friction law (`law { ... }`).
+#[derive(Clone, Debug)]
+pub struct Law {
+    /// The belt speed: where the law jumps and the mass can stick.
+    pub belt: Expr,
+    /// The static friction bound per unit mass.
+    pub stick: Expr,
+    /// `|v - V|` covered by the breakpoints of the piecewise-linear models.
+    pub range: Expr,
+    /// Kinetic friction per unit mass, any expression in `v`.
+    pub kinetic: Expr,
+    pub span: Span,
 }
 
 /// A checked model.
@@ -120,6 +136,9 @@ pub struct Model {
     pub scenes: Vec<Scene>,
     /// Every mapping the topology allows.
     pub mappings: Vec<Mapping>,
+    /// A smooth law instead of affine pieces (then no boundaries or domains:
+    /// its scenes build piecewise-linear models from it).
+    pub law: Option<Law>,
 }
 
 impl Model {

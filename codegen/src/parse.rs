@@ -22,6 +22,8 @@ mod kw {
     syn::custom_keyword!(v);
     syn::custom_keyword!(free);
     syn::custom_keyword!(structures);
+    syn::custom_keyword!(law);
+    syn::custom_keyword!(pieces);
 }
 
 /// A whole model file.
@@ -48,6 +50,8 @@ pub enum Item {
     Boundary(BoundaryAst),
     /// `domain N: BAND => EXPR;`
     Domain(DomainAst),
+    /// `law { belt: .., stick: .., range: .., kinetic: .. }`: a smooth kinetic friction law.
+    Law(OscillatorAst),
     /// `scene NAME { free: ...; structures: ...; }`
     Scene(SceneAst),
 }
@@ -124,6 +128,8 @@ pub struct SceneAst {
     pub name: Ident,
     pub free: Vec<Ident>,
     pub structures: Vec<LitStr>,
+    /// `pieces: N;` (models with a `law`): build an N-piece model.
+    pub pieces: Option<LitInt>,
 }
 
 fn docs_of(attrs: &[Attribute], diags: &mut Diagnostics) -> Vec<String> {
@@ -280,8 +286,13 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
         let value: Expr = input.parse()?;
         input.parse::<Token![;]>()?;
         Ok(Some(Item::Let(LetAst { docs, name, value })))
-    } else if la.peek(kw::oscillator) {
-        let kw: kw::oscillator = input.parse()?;
+    } else if la.peek(kw::oscillator) || la.peek(kw::law) {
+        let is_law = input.peek(kw::law);
+        let span = if is_law {
+            input.parse::<kw::law>()?.span
+        } else {
+            input.parse::<kw::oscillator>()?.span
+        };
         let body;
         braced!(body in input);
         let fields = braced_body(&body, |body| {
@@ -305,10 +316,12 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
                 return Ok(None);
             }
         };
-        Ok(Some(Item::Oscillator(OscillatorAst {
-            span: kw.span,
-            fields,
-        })))
+        let ast = OscillatorAst { span, fields };
+        Ok(Some(if is_law {
+            Item::Law(ast)
+        } else {
+            Item::Oscillator(ast)
+        }))
     } else if la.peek(kw::boundary) {
         input.parse::<kw::boundary>()?;
         let label: Ident = input.parse()?;
@@ -356,7 +369,15 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
         let parsed = braced_body(&body, |body| {
             let mut free = Vec::new();
             let mut structures = Vec::new();
+            let mut pieces = None;
             while !body.is_empty() {
+                if body.peek(kw::pieces) {
+                    body.parse::<kw::pieces>()?;
+                    body.parse::<Token![:]>()?;
+                    pieces = Some(body.parse::<LitInt>()?);
+                    body.parse::<Token![;]>()?;
+                    continue;
+                }
                 if body.peek(kw::free) {
                     body.parse::<kw::free>()?;
                     body.parse::<Token![:]>()?;
@@ -378,14 +399,15 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
                         body.parse::<Token![,]>()?;
                     }
                 } else {
-                    return Err(body
-                        .error("expected `free: NAMES;` or `structures: \"..\", ..;` in a scene"));
+                    return Err(body.error(
+                        "expected `free: NAMES;`, `structures: \"..\", ..;` or `pieces: N;` in a scene",
+                    ));
                 }
                 body.parse::<Token![;]>()?;
             }
-            Ok((free, structures))
+            Ok((free, structures, pieces))
         });
-        let (free, structures) = match parsed {
+        let (free, structures, pieces) = match parsed {
             Ok(p) => p,
             Err(e) => {
                 diags.push_syn(e);
@@ -397,6 +419,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
             name,
             free,
             structures,
+            pieces,
         })))
     } else {
         Err(la.error())
