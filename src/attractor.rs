@@ -26,7 +26,7 @@ impl Default for AttractorOptions {
     fn default() -> Self {
         Self {
             max_periods: 3000,
-            max_cycle: 48,
+            max_cycle: 160,
             newton: NewtonOptions::default(),
         }
     }

@@ -42,6 +42,9 @@ pub enum RootKind {
     Crossing,
     /// `h` touches zero without changing sign (tangency).
     Graze,
+    /// The event functions are not finite here (the motion has blown up):
+    /// the search stops at this phase.
+    NotFinite,
 }
 
 /// The first root.
@@ -115,7 +118,21 @@ fn search(
     graze_tol: f64,
     min_width: f64,
 ) -> Option<Root> {
+    if pa.h.iter().any(|h| h.is_nan()) || !pa.dh.is_finite() {
+        return Some(Root {
+            phase: a,
+            which: 0,
+            kind: RootKind::NotFinite,
+        });
+    }
     let b = bound(a, delta, pa);
+    if !b.is_finite() {
+        return Some(Root {
+            phase: a,
+            which: 0,
+            kind: RootKind::NotFinite,
+        });
+    }
     // Near a tangency (value and slope both small) locate the extremum
     // directly: the exclusion test would need ever smaller intervals there.
     let slope_tol = 2.0 * (2.0 * b * graze_tol).sqrt();

@@ -93,7 +93,7 @@ pub enum SimError {
         phase: f64,
     },
     /// The state became NaN or infinite (e.g. growth under negative damping).
-    #[error("the state is no longer finite at phase {phase} in {location:?} (x = {x}, v = {v})")]
+    #[error("the motion blows up (no longer finite) at phase {phase:.6} in {location:?} (x = {x:.3e}, v = {v:.3e})")]
     NotFinite {
         /// Phase.
         phase: f64,
@@ -292,10 +292,18 @@ impl<M: Model> Simulator<M> {
                 // `v - V_b` look like it returns within a few ulps of the start.
                 // Such a root (within 1e-9 of the start, on the boundary left) is
                 // the departure itself, not an event.
+                // A tangent departure (zero acceleration on leaving, as after a
+                // stick whose static bound equals the kinetic level) touches the
+                // boundary it leaves: a graze there within 1e-6 is the departure too.
                 let departure = |r: &crate::crossing::Root| {
                     let k = if r.which == 0 { info.lower } else { info.upper };
+                    let window = if r.kind == RootKind::Graze {
+                        1e-6
+                    } else {
+                        1e-9
+                    };
                     k.is_some_and(|k| self.velocities[k] == seg.v)
-                        && r.phase - seg.phase <= 1e-9 * seg.phase.abs().max(1.0)
+                        && r.phase - seg.phase <= window * seg.phase.abs().max(1.0)
                 };
                 let mut from = seg.search_from;
                 let root = loop {
@@ -311,7 +319,7 @@ impl<M: Model> Simulator<M> {
                     return Ok(None);
                 };
                 let (x, v) = self.state_at(seg, root.phase);
-                if !(x.is_finite() && v.is_finite()) {
+                if root.kind == RootKind::NotFinite || !(x.is_finite() && v.is_finite()) {
                     return Err(SimError::NotFinite {
                         phase: root.phase,
                         location: seg.location,
@@ -409,6 +417,14 @@ impl<M: Model> Simulator<M> {
                     return Ok(None);
                 };
                 let (x, _) = self.state_at(seg, root.phase);
+                if root.kind == RootKind::NotFinite || !x.is_finite() {
+                    return Err(SimError::NotFinite {
+                        phase: root.phase,
+                        location: seg.location,
+                        x,
+                        v: vs,
+                    });
+                }
                 if root.kind == RootKind::Graze {
                     // |Fnf| touches as without exceeding it: the stick persists.
                     let event = Event {
