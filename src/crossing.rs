@@ -45,6 +45,9 @@ pub enum RootKind {
     /// The event functions are not finite here (the motion has blown up):
     /// the search stops at this phase.
     NotFinite,
+    /// The phase cannot advance by the step here (the step is below the
+    /// rounding of the phase, which is too large, or is 0): the search stops.
+    Unresolved,
 }
 
 /// The first root.
@@ -99,6 +102,13 @@ pub fn first_root(
             return Some(r);
         }
         let next = phi + delta;
+        if !(next > phi) {
+            return Some(Root {
+                phase: phi,
+                which: 0,
+                kind: RootKind::Unresolved,
+            });
+        }
         let pn = probe(next);
         if let Some(r) = hidden_crossing(probe, phi, &p, next, &pn) {
             return Some(r);
@@ -363,6 +373,18 @@ mod tests {
         // Just below tangency: no root at all.
         let p = sine_probe(1.0 + 1e-6);
         assert!(first_root(&p, &|_, _, _| 1.0, 0.0, 5.0, 5.0, 1e-9).is_none());
+    }
+
+    #[test]
+    fn a_phase_beyond_the_resolution_of_the_step_stops_the_search() {
+        // At 1e17 the phase's rounding (16) exceeds the step: the walk could
+        // not advance (it looped forever before); nor can a zero step.
+        let p = sine_probe(2.0);
+        for (phi0, step) in [(1e17, 0.5), (0.0, 0.0)] {
+            let r = first_root(&p, &|_, _, _| 1.0, phi0, phi0 + 64.0, step, 1e-12).unwrap();
+            assert_eq!(r.kind, RootKind::Unresolved);
+            assert_eq!(r.phase, phi0);
+        }
     }
 
     #[test]

@@ -21,6 +21,7 @@ pub mod attractor;
 pub mod crossing;
 pub mod describe;
 pub mod homogeneous;
+pub mod integrate;
 pub mod map;
 pub mod map_plot;
 pub mod model;
@@ -36,6 +37,8 @@ pub mod stability;
 pub mod structure;
 pub mod sweep;
 pub mod sweep_plot;
+pub mod trade;
+pub mod trade_plot;
 
 pub use model::{
     BoundaryInfo, Coefficients, DomainInfo, MappingEval, MappingInfo, MappingKind, Model,

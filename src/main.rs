@@ -87,6 +87,32 @@ enum Command {
     /// (grazing, stick onset and vanishing, passable onset, |λ| = 1) and what
     /// lives beyond it; report coexisting motions.
     Sweep(SweepArgs),
+    /// Measure the speed/accuracy trade of a smooth-law model: its N-piece
+    /// predictions and the integrator at several tolerances against the law
+    /// integrated tightly (switching points, amplitude, time).
+    Trade {
+        /// A model with a smooth `law` (e.g. `stribeck`).
+        #[arg(long, default_value = "stribeck")]
+        model: String,
+        /// Parameter values (those free in the piecewise scenes), e.g. `--set W=1.5,Q0=6`.
+        #[arg(long, value_delimiter = ',')]
+        set: Vec<String>,
+        /// Piece counts (each needs a scene `plN` in the model file).
+        #[arg(long, value_delimiter = ',', default_value = "2,4,8,16,32,64")]
+        pieces: Vec<u32>,
+        /// Integrator tolerances to time against the reference.
+        #[arg(long, value_delimiter = ',', default_value = "1e-4,1e-6,1e-8,1e-10")]
+        tol: Vec<f64>,
+        /// The reference integration's tolerance.
+        #[arg(long, default_value_t = 1e-12)]
+        reference_tol: f64,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+        /// Draw error against time into FILE (.svg or .png).
+        #[arg(long, value_name = "FILE")]
+        plot: Option<PathBuf>,
+    },
     /// Which motions exist at each point of a grid over two parameters (the
     /// paper's Fig. 11); all cores, resumable, shardable for a cluster.
     Map(MapArgs),
@@ -660,6 +686,45 @@ fn run(cli: Cli) -> Result<Outcome, String> {
                 stickslip::map::plot_map(&out, plot).map_err(|e| e.to_string())?;
             }
             Ok(Outcome::ok(summary_text(&summary, &out)))
+        }
+        Command::Trade {
+            model,
+            set,
+            pieces,
+            tol,
+            reference_tol,
+            json,
+            plot,
+        } => {
+            if let Some(path) = &plot {
+                stickslip::plot::Format::of(path)?;
+            }
+            let set = parse_assignments(&set)?;
+            let measure = stickslip::trade::Measure {
+                set: &set,
+                pieces: &pieces,
+                tols: &tol,
+                reference_tol,
+            };
+            let trade = models::visit_smooth(&model, measure)
+                .unwrap_or_else(|| {
+                    let names: Vec<&str> = models::SMOOTH.iter().map(|i| i.name).collect();
+                    Err(stickslip::trade::TradeError::Input(format!(
+                        "`{model}` is not a model with a smooth law; compiled-in: {}",
+                        names.join(", ")
+                    )))
+                })
+                .map_err(|e| e.to_string())?;
+            if let Some(path) = &plot {
+                stickslip::trade_plot::plot_trade(&trade, path)?;
+            }
+            if json {
+                Ok(Outcome::ok(
+                    serde_json::to_string_pretty(&trade).map_err(|e| e.to_string())?,
+                ))
+            } else {
+                Ok(Outcome::ok(stickslip::trade_plot::table(&trade)))
+            }
         }
         Command::Sweep(args) => {
             if let Some(path) = &args.plot {

@@ -112,6 +112,33 @@ pub enum SimError {
         /// Where the run stopped.
         phase: f64,
     },
+    /// The event search cannot go on from here: the domain is too stiff for
+    /// the step rule (more than [`MAX_STEPS_PER_PERIOD`] steps per forcing
+    /// period), or the phase is so large that its rounding exceeds the step.
+    #[error("cannot locate the events from phase {phase} in {location:?}: {reason}")]
+    Unresolvable {
+        /// Phase where the search stopped.
+        phase: f64,
+        /// Where.
+        location: Location,
+        /// Why, in words.
+        reason: String,
+    },
+}
+
+/// The event search refuses a domain whose step (at most
+/// `W / (2 (sqrt|c_j| + |d_j|))` in phase) would need more than this many
+/// steps per forcing period: with a tiny mass, say, the effective damping
+/// `d_j` is huge and the search would run for hours (a typed error instead).
+pub const MAX_STEPS_PER_PERIOD: f64 = 1e7;
+
+fn unresolved(phase: f64, location: Location) -> SimError {
+    SimError::Unresolvable {
+        phase,
+        location,
+        reason: "the phase is too large for its rounding to resolve the event search's step"
+            .to_string(),
+    }
 }
 
 /// Tolerances of the simulation.
@@ -305,6 +332,18 @@ impl<M: Model> Simulator<M> {
                     k.is_some_and(|k| self.velocities[k] == seg.v)
                         && r.phase - seg.phase <= window * seg.phase.abs().max(1.0)
                 };
+                let steps = std::f64::consts::TAU / step;
+                if !(steps <= MAX_STEPS_PER_PERIOD) {
+                    return Err(SimError::Unresolvable {
+                        phase: seg.search_from,
+                        location: seg.location,
+                        reason: format!(
+                            "domain {j} is too stiff for exact event location ({steps:.3e} steps \
+                             per forcing period; 2 d_j = {:e}, c_j = {:e}, W = {w:e})",
+                            co.two_d, co.c
+                        ),
+                    });
+                }
                 let mut from = seg.search_from;
                 let root = loop {
                     match first_root(&probe, &bound, from, phase_limit, step, self.opts.graze_tol) {
@@ -318,6 +357,9 @@ impl<M: Model> Simulator<M> {
                     self.check_finite(seg, phase_limit)?;
                     return Ok(None);
                 };
+                if root.kind == RootKind::Unresolved {
+                    return Err(unresolved(root.phase, seg.location));
+                }
                 let (x, v) = self.state_at(seg, root.phase);
                 if root.kind == RootKind::NotFinite || !(x.is_finite() && v.is_finite()) {
                     return Err(SimError::NotFinite {
@@ -416,6 +458,9 @@ impl<M: Model> Simulator<M> {
                 let Some(root) = root else {
                     return Ok(None);
                 };
+                if root.kind == RootKind::Unresolved {
+                    return Err(unresolved(root.phase, seg.location));
+                }
                 let (x, _) = self.state_at(seg, root.phase);
                 if root.kind == RootKind::NotFinite || !x.is_finite() {
                     return Err(SimError::NotFinite {

@@ -1,0 +1,384 @@
+//! The speed/accuracy trade, measured (issue 5): the periodic motion of a
+//! smooth-law model predicted analytically by its N-piece models and
+//! computed by numerical integration at several tolerances, each compared
+//! with the law integrated at a tight tolerance (switching points at the belt
+//! speed, amplitude) and timed.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::attractor::{self, Attractor, AttractorOptions};
+use crate::integrate::{Integrator, Side, State};
+use crate::model::{MappingKind, Model, ModelVisitor};
+use crate::param::ParamSet;
+use crate::simulate::{Location, Segment, SimOptions, Simulator};
+use crate::smooth::{SmoothModel, SmoothVisitor};
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+/// The motion's fingerprint used for comparisons.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Fingerprint {
+    /// Events at the belt speed over one cycle: `(W t mod 2π, x)`, by phase.
+    pub belt_events: Vec<(f64, f64)>,
+    /// `max x − min x` over one cycle.
+    pub amplitude: f64,
+    /// Forcing periods per cycle.
+    pub periods: u32,
+}
+
+/// One computation and its error against the reference.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TradeRow {
+    /// `"pieces"` or `"integrator"`.
+    pub method: String,
+    /// Number of pieces (analytical prediction).
+    pub pieces: Option<u32>,
+    /// Integrator tolerance.
+    pub tol: Option<f64>,
+    /// The structure found (piecewise models) or `-`.
+    pub structure: String,
+    /// Wall time of the computation, seconds.
+    pub seconds: f64,
+    /// Largest error of a switching phase (W t) at the belt speed.
+    pub error_phase: f64,
+    /// Largest error of a switching displacement at the belt speed.
+    pub error_x: f64,
+    /// Error of the amplitude.
+    pub error_amplitude: f64,
+    /// The largest of the three (NaN when the motions differ in kind).
+    pub error: f64,
+    /// Why there is no error, if any.
+    pub note: Option<String>,
+}
+
+/// The whole measurement.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Trade {
+    /// The smooth model.
+    pub model: String,
+    /// The reference: the law integrated at this tolerance, then shot to a periodic motion.
+    pub reference_tol: f64,
+    /// The reference motion.
+    pub reference: Fingerprint,
+    /// One row per piece count and per tolerance.
+    pub rows: Vec<TradeRow>,
+    /// Least-squares slope of `log error` against `log N` (N ≥ 8): the observed convergence order.
+    pub order: Option<f64>,
+}
+
+/// Why a trade could not be measured.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TradeError {
+    /// Bad input (parameters, piece counts).
+    #[error("{0}")]
+    Input(String),
+    /// The reference could not be computed.
+    #[error("the reference integration failed: {0}")]
+    Reference(String),
+}
+
+fn compare(a: &Fingerprint, reference: &Fingerprint) -> (f64, f64, f64, Option<String>) {
+    let da = (a.amplitude - reference.amplitude).abs();
+    if a.periods != reference.periods || a.belt_events.len() != reference.belt_events.len() {
+        return (
+            f64::NAN,
+            f64::NAN,
+            da,
+            Some(format!(
+                "{} belt events in {} period(s) against the reference's {} in {}",
+                a.belt_events.len(),
+                a.periods,
+                reference.belt_events.len(),
+                reference.periods
+            )),
+        );
+    }
+    let (mut dp, mut dx) = (0.0f64, 0.0f64);
+    for (p, q) in a.belt_events.iter().zip(&reference.belt_events) {
+        let d = (p.0 - q.0).rem_euclid(TAU);
+        dp = dp.max(d.min(TAU - d));
+        dx = dx.max((p.1 - q.1).abs());
+    }
+    (dp, dx, da, None)
+}
+
+/// The reference fingerprint (and how long it took) of the smooth model `S`
+/// at `p`: integrate from rest past the transient, shoot to the periodic
+/// state, follow one cycle.
+fn integrated<S: SmoothModel>(
+    p: S::Params,
+    rtol: f64,
+    periods: u32,
+) -> Result<(Fingerprint, f64), String> {
+    let start = Instant::now();
+    let integ = Integrator::<S>::new(p, rtol).map_err(|e| e.to_string())?;
+    let rest = State {
+        phase: 0.0,
+        x: 0.0,
+        v: 0.0,
+        side: if integ.belt() > 0.0 {
+            Side::Below
+        } else {
+            Side::Above
+        },
+    };
+    let after = integ
+        .run(rest, 300.0 * TAU, |_| {})
+        .map_err(|e| e.to_string())?;
+    let periodic = integ
+        .shoot(after, periods, (rtol * 10.0).max(1e-12))
+        .map_err(|e| e.to_string())?;
+    let mut events = Vec::new();
+    let (mut lo, mut hi) = (periodic.x, periodic.x);
+    let mut state = periodic;
+    let n = 400 * periods as usize;
+    for i in 1..=n {
+        let to = periodic.phase + TAU * periods as f64 * i as f64 / n as f64;
+        state = integ
+            .run(state, to, |e| events.push((e.phase.rem_euclid(TAU), e.x)))
+            .map_err(|e| e.to_string())?;
+        lo = lo.min(state.x);
+        hi = hi.max(state.x);
+    }
+    events.sort_by(|a, b| a.0.total_cmp(&b.0));
+    Ok((
+        Fingerprint {
+            belt_events: events,
+            amplitude: hi - lo,
+            periods,
+        },
+        start.elapsed().as_secs_f64(),
+    ))
+}
+
+/// The fingerprint of the piecewise model `M` at `p`: its attractor from rest.
+fn piecewise<M: Model>(p: M::Params) -> Result<(Fingerprint, String, f64), String> {
+    let start = Instant::now();
+    let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
+    let rest = sim.start(0.0, 0.0, 0.0).map_err(|e| e.to_string())?;
+    let motion = match attractor::find(&sim, rest, AttractorOptions::default())
+        .map_err(|e| e.to_string())?
+    {
+        Attractor::Periodic(m) => m,
+        Attractor::NoMotion(_) => return Err("no motion reaches the belt speed".into()),
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    let info = M::INFO;
+    let stick = info.stick_boundary();
+    let m = motion.points.len();
+    let shift = TAU * motion.structure.periods() as f64;
+    let mut events: Vec<(f64, f64)> = Vec::new();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..m {
+        let mi = info.mappings[motion.structure.steps()[k]];
+        let a = motion.points[k];
+        if Some(mi.from) == stick {
+            events.push((a.phase.rem_euclid(TAU), a.x));
+        }
+        let b_phase = if k + 1 < m {
+            motion.points[k + 1].phase
+        } else {
+            motion.points[0].phase + shift
+        };
+        let location = if mi.kind == MappingKind::Stick {
+            Location::Stick
+        } else {
+            Location::Domain(mi.domain.expect("flow mapping"))
+        };
+        let seg = Segment {
+            x: a.x,
+            v: sim.velocity(mi.from),
+            phase: a.phase,
+            location,
+            search_from: a.phase,
+        };
+        for i in 0..=40 {
+            let phase = a.phase + (b_phase - a.phase) * i as f64 / 40.0;
+            let (x, _) = sim.state_at(&seg, phase);
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+    }
+    // A stick onset and the stick's end are two belt events, as in the integration;
+    // a point that is both the end of one stick mapping's arrival and a start is counted once.
+    events.sort_by(|a, b| a.0.total_cmp(&b.0));
+    events.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12);
+    Ok((
+        Fingerprint {
+            belt_events: events,
+            amplitude: hi - lo,
+            periods: motion.structure.periods(),
+        },
+        motion.structure.notation(info),
+        seconds,
+    ))
+}
+
+struct Piecewise<'a> {
+    set: &'a [(String, f64)],
+}
+
+impl ModelVisitor for Piecewise<'_> {
+    type Output = Result<(Fingerprint, String, f64), String>;
+    fn visit<M: Model>(self) -> Self::Output {
+        let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+        let p = M::Params::from_pairs(M::INFO, &pairs).map_err(|e| e.to_string())?;
+        piecewise::<M>(p)
+    }
+}
+
+/// The trade for the smooth model `S` (its piecewise scenes are looked up as `NAME::plN`).
+pub struct Measure<'a> {
+    /// Parameter values.
+    pub set: &'a [(String, f64)],
+    /// Piece counts.
+    pub pieces: &'a [u32],
+    /// Integrator tolerances.
+    pub tols: &'a [f64],
+    /// The reference tolerance.
+    pub reference_tol: f64,
+}
+
+impl SmoothVisitor for Measure<'_> {
+    type Output = Result<Trade, TradeError>;
+    fn visit<S: SmoothModel>(self) -> Self::Output {
+        let name = S::INFO.name;
+        let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+        let p = S::Params::from_pairs(&smooth_info_as_model::<S>(), &pairs)
+            .map_err(|e| TradeError::Input(e.to_string()))?;
+        // Piecewise predictions first: the finest one gives the period N of the motion.
+        let mut pw = Vec::new();
+        for &n in self.pieces {
+            let scene = format!("{name}::pl{n}");
+            let result = crate::models::visit(&scene, Piecewise { set: self.set }).ok_or_else(|| {
+                TradeError::Input(format!("`{scene}` is not compiled in: the model file needs `scene pl{n} {{ pieces: {n}; }}`"))
+            })?;
+            pw.push((n, result));
+        }
+        let periods = pw
+            .iter()
+            .rev()
+            .find_map(|(_, r)| r.as_ref().ok().map(|f| f.0.periods))
+            .unwrap_or(1);
+        let (reference, _) =
+            integrated::<S>(p, self.reference_tol, periods).map_err(TradeError::Reference)?;
+        let mut rows = Vec::new();
+        for (n, result) in pw {
+            rows.push(match result {
+                Ok((fp, structure, seconds)) => {
+                    let (ep, ex, ea, note) = compare(&fp, &reference);
+                    TradeRow {
+                        method: "pieces".into(),
+                        pieces: Some(n),
+                        tol: None,
+                        structure,
+                        seconds,
+                        error_phase: ep,
+                        error_x: ex,
+                        error_amplitude: ea,
+                        error: if note.is_some() {
+                            f64::NAN
+                        } else {
+                            ep.max(ex).max(ea)
+                        },
+                        note,
+                    }
+                }
+                Err(e) => TradeRow {
+                    method: "pieces".into(),
+                    pieces: Some(n),
+                    tol: None,
+                    structure: "-".into(),
+                    seconds: f64::NAN,
+                    error_phase: f64::NAN,
+                    error_x: f64::NAN,
+                    error_amplitude: f64::NAN,
+                    error: f64::NAN,
+                    note: Some(e),
+                },
+            });
+        }
+        for &tol in self.tols {
+            rows.push(match integrated::<S>(p, tol, periods) {
+                Ok((fp, seconds)) => {
+                    let (ep, ex, ea, note) = compare(&fp, &reference);
+                    TradeRow {
+                        method: "integrator".into(),
+                        pieces: None,
+                        tol: Some(tol),
+                        structure: "-".into(),
+                        seconds,
+                        error_phase: ep,
+                        error_x: ex,
+                        error_amplitude: ea,
+                        error: if note.is_some() {
+                            f64::NAN
+                        } else {
+                            ep.max(ex).max(ea)
+                        },
+                        note,
+                    }
+                }
+                Err(e) => TradeRow {
+                    method: "integrator".into(),
+                    pieces: None,
+                    tol: Some(tol),
+                    structure: "-".into(),
+                    seconds: f64::NAN,
+                    error_phase: f64::NAN,
+                    error_x: f64::NAN,
+                    error_amplitude: f64::NAN,
+                    error: f64::NAN,
+                    note: Some(e),
+                },
+            });
+        }
+        let order = convergence_order(&rows);
+        Ok(Trade {
+            model: name.to_string(),
+            reference_tol: self.reference_tol,
+            reference,
+            rows,
+            order,
+        })
+    }
+}
+
+/// The model info the smooth model's parameters are checked against.
+fn smooth_info_as_model<S: SmoothModel>() -> crate::ModelInfo {
+    crate::ModelInfo {
+        name: S::INFO.name,
+        model: S::INFO.name,
+        scene: None,
+        doc: S::INFO.doc,
+        params: S::INFO.params,
+        free: S::INFO.free,
+        boundaries: &[],
+        domains: &[],
+        mappings: &[],
+        structures: &[],
+    }
+}
+
+/// Least-squares slope of `-log(error)` against `log N` over the piece
+/// counts N ≥ 8 with a finite, positive error.
+pub fn convergence_order(rows: &[TradeRow]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter_map(|r| match (r.pieces, r.error) {
+            (Some(n), e) if n >= 8 && e.is_finite() && e > 0.0 => Some(((n as f64).ln(), e.ln())),
+            _ => None,
+        })
+        .collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    (sxx > 0.0).then(|| -sxy / sxx)
+}
