@@ -102,7 +102,7 @@ pub fn first_root(
             return Some(r);
         }
         let next = phi + delta;
-        if !(next > phi) {
+        if next <= phi || next.is_nan() {
             return Some(Root {
                 phase: phi,
                 which: 0,

@@ -425,7 +425,8 @@ impl<M: SmoothModel> Integrator<M> {
                 });
             }
             last = norm;
-            let h = 1e-6 * (1.0 + s.x.abs().max(s.v.abs()));
+            // Differences well above the integration error, well below the motion.
+            let h = self.rtol.sqrt().clamp(1e-7, 1e-2) * (1.0 + s.x.abs().max(s.v.abs()));
             let mut jac = Matrix2::zeros();
             for (col, (dx, dv)) in [(h, 0.0), (0.0, h)].into_iter().enumerate() {
                 let plus = self.period_map(

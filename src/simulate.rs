@@ -333,7 +333,7 @@ impl<M: Model> Simulator<M> {
                         && r.phase - seg.phase <= window * seg.phase.abs().max(1.0)
                 };
                 let steps = std::f64::consts::TAU / step;
-                if !(steps <= MAX_STEPS_PER_PERIOD) {
+                if steps.is_nan() || steps > MAX_STEPS_PER_PERIOD {
                     return Err(SimError::Unresolvable {
                         phase: seg.search_from,
                         location: seg.location,
