@@ -289,7 +289,7 @@ impl<M: SmoothModel> Integrator<M> {
             let (y1, err) = self.step(t, y, hs);
             let sc = |i: usize| self.rtol * (1.0 + y[i].abs().max(y1[i].abs()));
             let en = (err[0] / sc(0)).abs().max((err[1] / sc(1)).abs());
-            if !(en <= 1.0) {
+            if en.is_nan() || en > 1.0 {
                 if !en.is_finite() && hs < 1e-12 {
                     return Err(IntegrateError::Failed {
                         phase: w * t,

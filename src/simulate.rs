@@ -7,8 +7,9 @@
 //! step rule cannot miss a crossing: the bound it needs on `|v''|` comes from
 //! the linear ODE that the acceleration `a` and its rate `a'` satisfy in a
 //! domain, `(a, a')' = M (a, a') + (0, −A0 W² cos W t)` with
-//! `M = [[0, 1], [−c_j, −2 d_j]]`, hence by Grönwall
-//! `|a'| ≤ (max(|a0|, |a0'|) + Δt A0 W²) e^{max(1, c_j + 2|d_j|) Δt}`.
+//! `M = [[0, 1], [−c_j, −2 d_j]]`, hence by Grönwall in the norm
+//! `max(ω|a|, |a'|)`, `ω = sqrt(c_j)` (scale-invariant: both rates are 1/time)
+//! `|a'| ≤ (max(ω|a0|, |a0'|) + Δt A0 W²) e^{(ω + 2|d_j|) Δt}`.
 //! On the stick boundary the force criteria decide pass or stick; a stick
 //! ends at the first phase where `Fnf = ±as` (bound `|Fnf''| ≤ A0` in phase).
 
@@ -306,12 +307,21 @@ impl<M: Model> Simulator<M> {
                         ddh: da / (w * w),
                     }
                 };
-                let lipschitz = 1.0f64.max(co.c.abs() + co.two_d.abs());
+                // Grönwall in the norm max(ω|a|, |a'|), ω = sqrt|c_j|: the matrix
+                // [[0, ω], [−c_j/ω, −2 d_j]] has norm max(ω, |c_j|/ω + 2|d_j|), a
+                // rate in 1/time, so the bound scales with the problem's units
+                // (in max(|a|, |a'|) the rate max(1, c_j + 2|d_j|) mixes units
+                // and its exponential overflows for stiff or slow systems).
+                let omega = match co.c.abs().sqrt() {
+                    o if o > 0.0 => o,
+                    _ => 1.0,
+                };
+                let rate = omega.max(co.c.abs() / omega + co.two_d.abs());
                 let forcing = self.osc.amplitude.abs() * w * w;
                 let bound = |_phi: f64, delta: f64, p: &Probe| {
                     let dt = delta / w;
-                    let u0 = (p.dh * w).abs().max((p.ddh * w * w).abs());
-                    (u0 + dt * forcing) * (lipschitz * dt).exp() / (w * w)
+                    let u0 = (omega * p.dh * w).abs().max((p.ddh * w * w).abs());
+                    (u0 + dt * forcing) * (rate * dt).exp() / (w * w)
                 };
                 let step = (std::f64::consts::FRAC_PI_4)
                     .min(w * 0.5 / (co.c.abs().sqrt() + 0.5 * co.two_d.abs()));
