@@ -179,6 +179,21 @@ pub fn conditions<M: Model>(
         if duration.is_nan() || duration <= 0.0 {
             continue;
         }
+        // The durations add up to the cycle's 2πN, so a longer one means that
+        // another mapping takes negative time; the event search over the
+        // whole span (Newton may put it anywhere) would be unbounded work.
+        if duration > shift + phase_tol(b.phase) {
+            add(
+                ViolationKind::Duration,
+                None,
+                format!(
+                    "mapping {} must take less than the whole cycle (W t from {} to {})",
+                    mi.name, a.phase, b.phase
+                ),
+                shift - duration,
+            );
+            continue;
+        }
         match (mi.kind, mi.domain) {
             (MappingKind::Stick, _) => {
                 // |Fnf| < as during the stick: the first stick end is the one claimed.

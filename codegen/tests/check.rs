@@ -343,7 +343,7 @@ fn unknown_function() {
     assert_error(
         &src,
         "22:23",
-        &["unknown function `tan`; available: exp, ln, sqrt, sin, cos, abs, powi"],
+        &["unknown function `tan`; available: exp, ln, sqrt, sin, cos, abs, sign, powi"],
     );
 }
 
@@ -1013,7 +1013,7 @@ fn scene_with_an_unknown_entry() {
     assert_error(
         &src,
         "33:9",
-        &["expected `free: NAMES;` or `structures: \"..\", ..;` in a scene"],
+        &["expected `free: NAMES;`, `structures: \"..\", ..;` or `pieces: N;` in a scene"],
     );
 }
 

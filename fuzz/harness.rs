@@ -1,0 +1,269 @@
+//! What the fuzz targets do with their bytes, shared by the cargo-fuzz
+//! targets (`fuzz/fuzz_targets/`) and by the main workspace's bounded smoke
+//! test (`tests/fuzz_smoke.rs`), which replays `fuzz/seeds/` and random
+//! inputs under `cargo test`. Depends on `stickslip` and `stickslip-codegen`
+//! only.
+//!
+//! Besides "no panic, no hang", each entry point is held to what it promises:
+//! a rejected model's report locates every error in `fuzz.ssm`;
+//! `Simulator::new` fails exactly when `ParamSet::check` does; `start` fails
+//! exactly on a non-finite state; simulated events come in order at finite
+//! phases; a Newton solution reported admissible has finite points.
+
+#![allow(dead_code)]
+
+use stickslip::attractor::{self, AttractorOptions};
+use stickslip::model::Model;
+use stickslip::models::{coulomb, paper, stribeck8};
+use stickslip::motion;
+use stickslip::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::simulate::{SimOptions, Simulator, MAX_STEPS_PER_PERIOD};
+use stickslip::structure::Structure;
+use stickslip::ParamSet;
+
+const TAU: f64 = std::f64::consts::TAU;
+
+/// The bytes as a model file (invalid UTF-8 replaced): the generator must
+/// return code, or a report whose every error has a `fuzz.ssm:LINE:COL` with
+/// a real line.
+pub fn model_source(data: &[u8]) {
+    let source = String::from_utf8_lossy(data);
+    match stickslip_codegen::generate_source(&source, "fuzz.ssm") {
+        Ok(generated) => assert!(!generated.code.is_empty()),
+        Err(report) => {
+            assert!(
+                report.ends_with(" in fuzz.ssm\n"),
+                "no count line:\n{report}"
+            );
+            let mut errors = 0;
+            let lines: Vec<&str> = report.lines().collect();
+            for (i, line) in lines.iter().enumerate() {
+                if line.starts_with("error: ") {
+                    errors += 1;
+                    let location = lines
+                        .get(i + 1)
+                        .and_then(|l| l.strip_prefix("  --> fuzz.ssm:"))
+                        .unwrap_or_else(|| panic!("unlocated error `{line}` in:\n{report}"));
+                    let line_no: usize = location
+                        .split(':')
+                        .next()
+                        .and_then(|n| n.parse().ok())
+                        .unwrap_or(0);
+                    assert!(line_no >= 1, "error without a line: `{line}` in:\n{report}");
+                }
+            }
+            assert!(errors >= 1, "a report without an error:\n{report}");
+        }
+    }
+}
+
+/// Reads the fuzz input; past its end every read is 0, which selects the
+/// default of each choice (so the empty input runs the paper model at its
+/// defaults, from rest).
+pub struct Bytes<'a> {
+    data: &'a [u8],
+    pos: usize,
+}
+
+impl<'a> Bytes<'a> {
+    pub fn new(data: &'a [u8]) -> Self {
+        Self { data, pos: 0 }
+    }
+
+    pub fn byte(&mut self) -> u8 {
+        let b = self.data.get(self.pos).copied().unwrap_or(0);
+        self.pos += 1;
+        b
+    }
+
+    fn bits(&mut self) -> u64 {
+        let mut out = 0u64;
+        for _ in 0..8 {
+            out = (out << 8) | self.byte() as u64;
+        }
+        out
+    }
+
+    /// A value near `default` or anywhere: the default, a relative
+    /// perturbation, a power-of-two rescaling (either sign, 2^-128..2^127),
+    /// a special value (0, -0, NaN, ±inf, tiny, huge), raw bits, or a small
+    /// multiple of 1/16.
+    pub fn f64(&mut self, default: f64) -> f64 {
+        const SPECIAL: [f64; 14] = [
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::MIN,
+            f64::EPSILON,
+            1e-12,
+            1e12,
+            1.0,
+            -1.0,
+        ];
+        let sel = self.byte();
+        match sel % 6 {
+            0 => default,
+            1 => default * (1.0 + (self.byte() as i8) as f64 / 256.0),
+            2 => {
+                let sign = if sel & 0x80 != 0 { -1.0 } else { 1.0 };
+                sign * default * 2f64.powi((self.byte() as i8) as i32)
+            }
+            3 => SPECIAL[self.byte() as usize % SPECIAL.len()],
+            4 => f64::from_bits(self.bits()),
+            _ => (self.byte() as i8) as f64 / 16.0,
+        }
+    }
+}
+
+/// The largest number of event-search steps per forcing period over the
+/// domains (the step rule of `Simulator::next_event`).
+fn steps_per_period<M: Model>(p: &M::Params) -> f64 {
+    let w = M::oscillator(p).frequency;
+    (0..M::INFO.domains.len())
+        .map(|j| {
+            let co = M::coefficients(p, j);
+            let step = std::f64::consts::FRAC_PI_4
+                .min(w * 0.5 / (co.c.abs().sqrt() + 0.5 * co.two_d.abs()));
+            TAU / step
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The bytes as parameters, states, structures and guesses for one of the
+/// built-in models (the paper model, Coulomb, the 8-piece Stribeck model, and
+/// the paper's `reference` scene, whose constants are folded at build time).
+pub fn runtime(data: &[u8]) {
+    let mut r = Bytes::new(data);
+    match r.byte() % 4 {
+        0 => exercise::<paper::Paper>(&mut r),
+        1 => exercise::<coulomb::Coulomb>(&mut r),
+        2 => exercise::<stribeck8::Stribeck8>(&mut r),
+        _ => exercise::<paper::reference::Reference>(&mut r),
+    }
+}
+
+/// Work per input is bounded: at most 400 events per simulated run, 4
+/// forcing periods for `run`, 12 for `attractor::find`, 30 Newton iterations.
+fn exercise<M: Model>(r: &mut Bytes) {
+    let mut p = M::Params::default();
+    for i in 0..M::Params::NAMES.len() {
+        let value = r.f64(p.get(i));
+        p.set(i, value);
+    }
+    let checked = p.check();
+    let opts = SimOptions {
+        graze_tol: 1e-10,
+        max_events: 400,
+    };
+    let sim = match Simulator::<M>::new(p, opts) {
+        Ok(sim) => {
+            assert!(
+                checked.is_ok(),
+                "Simulator::new accepted {p:?}: {checked:?}"
+            );
+            sim
+        }
+        Err(e) => {
+            assert!(
+                checked.is_err(),
+                "Simulator::new rejected checked {p:?}: {e}"
+            );
+            return;
+        }
+    };
+
+    // The event search walks about `steps_per_period` steps per forcing
+    // period (refused above `MAX_STEPS_PER_PERIOD`, a typed error). Between a
+    // few hundred thousand and that limit a run is slow but finite: such
+    // inputs stop here, to keep the work per input bounded.
+    let steps = steps_per_period::<M>(&p);
+    if steps > 2e5 && steps <= MAX_STEPS_PER_PERIOD {
+        return;
+    }
+
+    // A bounded simulation from an arbitrary state.
+    let (x, v, phase) = (r.f64(0.0), r.f64(0.0), r.f64(0.0));
+    let finite = x.is_finite() && v.is_finite() && phase.is_finite();
+    match sim.start(x, v, phase) {
+        Ok(seg) => {
+            assert!(finite);
+            let end = phase + (1 + r.byte() % 4) as f64 * TAU;
+            let mut last = phase;
+            let _ = sim.run(seg, end, |e| {
+                assert!(
+                    e.phase.is_finite() && e.x.is_finite() && e.v.is_finite(),
+                    "{e:?}"
+                );
+                assert!(
+                    e.phase >= last,
+                    "events out of order: {e:?} after phase {last}"
+                );
+                last = e.phase;
+            });
+        }
+        Err(_) => assert!(!finite, "start rejected a finite state ({x}, {v}, {phase})"),
+    }
+
+    // A structure (mostly well-formed, sometimes arbitrary text) solved by
+    // Newton from an arbitrary guess.
+    let info = M::INFO;
+    let names = info.mapping_names();
+    let text = if r.byte() % 8 == 7 {
+        let n = r.byte() % 24;
+        let raw: Vec<u8> = (0..n).map(|_| r.byte()).collect();
+        String::from_utf8_lossy(&raw).into_owned()
+    } else {
+        let n = 1 + r.byte() as usize % 6;
+        (0..n)
+            .map(|_| names[r.byte() as usize % names.len()])
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let periods = (r.byte() % 4) as u32;
+    if let Ok(structure) = Structure::parse(info, &text, periods) {
+        let m = structure.len();
+        let guess: Vec<SwitchingPoint> = (0..m)
+            .map(|k| SwitchingPoint {
+                phase: r.f64(TAU * periods as f64 * k as f64 / m as f64),
+                x: r.f64(0.0),
+            })
+            .collect();
+        let newton = NewtonOptions {
+            tolerance: 1e-12,
+            max_iterations: 1 + r.byte() as usize % 30,
+        };
+        let motion = motion::solve(&sim, structure.clone(), guess, newton);
+        if motion.is_admissible() {
+            assert!(
+                motion
+                    .points
+                    .iter()
+                    .all(|q| q.phase.is_finite() && q.x.is_finite()),
+                "an admissible motion with non-finite points: {motion:?}"
+            );
+        }
+        // Seeding simulates 200 forcing periods from each of 24 starts.
+        if r.byte() % 8 == 1 && steps <= 2e3 {
+            let _ = attractor::seed(&sim, &structure);
+        }
+    }
+
+    // The steady state from another arbitrary start, briefly.
+    let (x, v, phase) = (r.f64(0.0), r.f64(0.0), r.f64(0.0));
+    if let Ok(seg) = sim.start(x, v, phase) {
+        let opts = AttractorOptions {
+            max_periods: 1 + (r.byte() % 12) as u32,
+            max_cycle: 1 + r.byte() as usize % 12,
+            newton: NewtonOptions {
+                tolerance: 1e-12,
+                max_iterations: 30,
+            },
+        };
+        let _ = attractor::find(&sim, seg, opts);
+    }
+}
