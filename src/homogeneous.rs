@@ -12,7 +12,9 @@
 //! are computed from their power series in `z` and lose no digits (SPEC §4);
 //! elsewhere from the closed forms. The generated code calls [`general`] when
 //! the regime depends on a run-time parameter and one of the specialized
-//! functions when the regime was fixed at build time.
+//! functions when the regime was fixed at build time. The functions take the
+//! damping `d` and the stiffness `c` (not `d^2 - c`), so that an over-damped
+//! pair of widely separated exponents keeps the digits of the slow one.
 
 /// Below this `|z| = |w2| tau^2` the series is used (11 terms reach 1e-19).
 const SERIES_LIMIT: f64 = 1.0;
@@ -32,18 +34,19 @@ fn series(z: f64) -> (f64, f64) {
     (c, s)
 }
 
-/// `(Ec, Es)` for any sign of `w2 = d^2 - c`.
+/// `(Ec, Es)` of `x'' + 2 d x' + c x = 0` for any sign of `w2 = d^2 - c`.
 #[inline]
-pub fn general(d: f64, w2: f64, tau: f64) -> (f64, f64) {
+pub fn general(d: f64, c: f64, tau: f64) -> (f64, f64) {
+    let w2 = d * d - c;
     let z = w2 * tau * tau;
     if z.abs() <= SERIES_LIMIT {
         let e = (-d * tau).exp();
-        let (c, s) = series(z);
-        (e * c, e * tau * s)
+        let (cs, s) = series(z);
+        (e * cs, e * tau * s)
     } else if w2 < 0.0 {
         underdamped(d, (-w2).sqrt(), tau)
     } else {
-        overdamped(d, w2.sqrt(), tau)
+        overdamped(d, c, tau)
     }
 }
 
@@ -55,22 +58,30 @@ pub fn underdamped(d: f64, omega: f64, tau: f64) -> (f64, f64) {
     (e * c, e * s / omega)
 }
 
-/// `(Ec, Es)` when `d^2 > c`, with `omega = sqrt(d^2 - c)`. Written with the
-/// two exponents `(omega - d) tau` and `-(omega + d) tau` so that the product
-/// `exp(-d tau) cosh(omega tau)` never overflows while the motion itself
-/// decays; the series covers `omega tau <= 1`, where the difference of the
+/// `(Ec, Es)` when `d^2 > c`, `omega = sqrt(d^2 - c)`. Written with the two
+/// exponents `lambda± = -d ± omega` so that `exp(-d tau) cosh(omega tau)`
+/// never overflows while the motion decays; the exponent nearer zero is
+/// formed as `-c / (d + omega)` (or `c / (omega - d)` for negative damping),
+/// which keeps its digits when the two are widely separated (`d^2 >> c`).
+/// The series covers `omega tau <= 1`, where the difference of the
 /// exponentials would cancel.
 #[inline]
-pub fn overdamped(d: f64, omega: f64, tau: f64) -> (f64, f64) {
-    let z = omega * omega * tau * tau;
+pub fn overdamped(d: f64, c: f64, tau: f64) -> (f64, f64) {
+    let w2 = d * d - c;
+    let z = w2 * tau * tau;
     if z <= SERIES_LIMIT {
         let e = (-d * tau).exp();
-        let (c, s) = series(z);
-        return (e * c, e * tau * s);
+        let (cs, s) = series(z);
+        return (e * cs, e * tau * s);
     }
-    let up = ((omega - d) * tau).exp();
-    let down = (-(omega + d) * tau).exp();
-    (0.5 * (up + down), 0.5 * (up - down) / omega)
+    let omega = w2.sqrt();
+    let (up, down) = if d >= 0.0 {
+        (-c / (d + omega), -(d + omega))
+    } else {
+        (omega - d, c / (omega - d))
+    };
+    let (eu, ed) = ((up * tau).exp(), (down * tau).exp());
+    (0.5 * (eu + ed), 0.5 * (eu - ed) / omega)
 }
 
 /// `(Ec, Es)` at critical damping `d^2 = c`: `(exp(-d tau), tau exp(-d tau))`.
@@ -105,15 +116,15 @@ mod tests {
         // Across z = +-1 (series <-> closed form) and across w2 = 0.
         let (d, tau) = (0.7, 1.3);
         for &w2 in &[-1.0 / (tau * tau), 1.0 / (tau * tau)] {
-            let a = general(d, w2 * (1.0 - 1e-12), tau);
-            let b = general(d, w2 * (1.0 + 1e-12), tau);
+            let a = general(d, d * d - w2 * (1.0 - 1e-12), tau);
+            let b = general(d, d * d - w2 * (1.0 + 1e-12), tau);
             assert!(
                 (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12,
                 "{a:?} {b:?}"
             );
         }
-        let a = general(d, -1e-300, tau);
-        let b = general(d, 1e-300, tau);
+        let a = general(d, d * d + 1e-300, tau);
+        let b = general(d, d * d - 1e-300, tau);
         let c = critical(d, tau);
         assert_eq!(a, c);
         assert_eq!(b, c);

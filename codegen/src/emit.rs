@@ -137,22 +137,22 @@ impl Writer<'_> {
 
     /// The call computing `(Ec, Es)` for `(d, w2, tau)`, specialized when the
     /// regime is known at build time.
-    fn hom_call(&self, d: Id, w2: Id, tau: Id) -> TokenStream {
+    fn hom_call(&self, d: Id, c: Id, tau: Id) -> TokenStream {
         let dt = self.expr(d).0;
         let tt = self.expr(tau).0;
-        match self.g.as_const(w2) {
-            Some(w) if w < 0.0 => {
-                let (om, _) = literal((-w).sqrt());
+        match (self.g.as_const(d), self.g.as_const(c)) {
+            (Some(dv), Some(cv)) if dv * dv < cv => {
+                let (om, _) = literal((cv - dv * dv).sqrt());
                 quote!(::stickslip::homogeneous::underdamped(#dt, #om, #tt))
             }
-            Some(w) if w > 0.0 => {
-                let (om, _) = literal(w.sqrt());
-                quote!(::stickslip::homogeneous::overdamped(#dt, #om, #tt))
+            (Some(dv), Some(cv)) if dv * dv > cv => {
+                let ct = self.expr(c).0;
+                quote!(::stickslip::homogeneous::overdamped(#dt, #ct, #tt))
             }
-            Some(_) => quote!(::stickslip::homogeneous::critical(#dt, #tt)),
-            None => {
-                let wt = self.expr(w2).0;
-                quote!(::stickslip::homogeneous::general(#dt, #wt, #tt))
+            (Some(_), Some(_)) => quote!(::stickslip::homogeneous::critical(#dt, #tt)),
+            _ => {
+                let ct = self.expr(c).0;
+                quote!(::stickslip::homogeneous::general(#dt, #ct, #tt))
             }
         }
     }
@@ -220,15 +220,15 @@ fn straight_line(
         let node = g.node(id);
         match node {
             Node::Const(_) | Node::Param(_) | Node::Var(_) => continue,
-            Node::Hom(kind, d, w2, tau) => {
-                let key = (d, w2, tau);
+            Node::Hom(kind, d, c, tau) => {
+                let key = (d, c, tau);
                 if let std::collections::btree_map::Entry::Vacant(slot) = homs.entry(key) {
                     let (ec, es) = (
                         format_ident!("ec{}", counter),
                         format_ident!("es{}", counter),
                     );
                     counter += 1;
-                    let call = w.hom_call(d, w2, tau);
+                    let call = w.hom_call(d, c, tau);
                     stmts.extend(quote!(let (#ec, #es) = #call;));
                     slot.insert((ec, es));
                 }

@@ -43,10 +43,8 @@ pub fn flow(inst: &mut Instance, j: usize, x0: Id, v0: Id, phi0: Id, phi1: Id) -
     let y_off = g.sub(v0, vp0);
     let dphi = g.sub(phi1, phi0);
     let tau = g.div(dphi, w);
-    let d_sq = g.powi(d, 2);
-    let w2 = g.sub(d_sq, c);
-    let ec = g.hom(Hom::Ec, d, w2, tau);
-    let es = g.hom(Hom::Es, d, w2, tau);
+    let ec = g.hom(Hom::Ec, d, c, tau);
+    let es = g.hom(Hom::Es, d, c, tau);
     // x_h = Ec X0 + Es (Y0 + d X0)
     let dx = g.mul(d, x_off);
     let ydx = g.add(y_off, dx);

@@ -13,8 +13,10 @@ use std::collections::HashMap;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Id(pub u32);
 
-/// The two fused homogeneous-solution functions of a damped oscillator, in
-/// the elapsed time `tau`, with `w2 = d^2 - c`:
+/// The two fused homogeneous-solution functions of a damped oscillator
+/// `x'' + 2 d x' + c x = 0`, in the elapsed time `tau`, with `w2 = d^2 - c`
+/// (the node holds `(d, c, tau)`, so that the run time can form the slow
+/// exponent of an over-damped pair as `-c / (d + omega)` without cancellation):
 ///
 /// * `Ec(d, w2, tau) = exp(-d tau) * cosh(sqrt(w2) tau)` (`cos` when `w2 < 0`),
 /// * `Es(d, w2, tau) = exp(-d tau) * sinh(sqrt(w2) tau) / sqrt(w2)` (`sin/omega`
@@ -52,15 +54,15 @@ pub enum Node {
     Abs(Id),
     /// `signum`, the derivative of `abs` away from zero.
     Sign(Id),
-    /// A homogeneous-solution function `(d, w2, tau)`.
+    /// A homogeneous-solution function `(d, c, tau)`.
     Hom(Hom, Id, Id, Id),
 }
 
 /// Why a derivative could not be formed.
 #[derive(Clone, Debug, PartialEq)]
 pub enum DiffError {
-    /// `d/dw2` of `Es` where the damping discriminant itself depends on the
-    /// variable: not needed for state or phase derivatives.
+    /// A derivative of `Ec`/`Es` through `d` or `c`: coefficients never
+    /// depend on the state or the phases, so it is not needed.
     DiscriminantDependsOnVariable,
 }
 
@@ -375,45 +377,32 @@ impl Graph {
     /// Chain rule through `Ec`/`Es`:
     /// `dEc/dtau = -d Ec + w2 Es`, `dEs/dtau = Ec - d Es`,
     /// `dEc/dd = -tau Ec`, `dEs/dd = -tau Es`, `dEc/dw2 = tau Es / 2`.
-    fn diff_hom(&mut self, kind: Hom, d: Id, w2: Id, tau: Id, var: u32) -> Result<Id, DiffError> {
-        let ec = self.hom(Hom::Ec, d, w2, tau);
-        let es = self.hom(Hom::Es, d, w2, tau);
-        let (dd, dw2, dtau) = (
-            self.diff(d, var)?,
-            self.diff(w2, var)?,
-            self.diff(tau, var)?,
-        );
+    fn diff_hom(&mut self, kind: Hom, d: Id, c: Id, tau: Id, var: u32) -> Result<Id, DiffError> {
+        let ec = self.hom(Hom::Ec, d, c, tau);
+        let es = self.hom(Hom::Es, d, c, tau);
+        let (dd, dc, dtau) = (self.diff(d, var)?, self.diff(c, var)?, self.diff(tau, var)?);
         let own = match kind {
             Hom::Ec => ec,
             Hom::Es => es,
         };
-        // Partial derivative with respect to tau.
+        // Partial derivative with respect to tau: dEc/dtau = -d Ec + w2 Es,
+        // dEs/dtau = Ec - d Es, with w2 = d^2 - c.
         let d_own = self.mul(d, own);
         let p_tau = match kind {
             Hom::Ec => {
+                let d2 = self.powi(d, 2);
+                let w2 = self.sub(d2, c);
                 let w = self.mul(w2, es);
                 self.sub(w, d_own)
             }
             Hom::Es => self.sub(ec, d_own),
         };
-        let t1 = self.mul(p_tau, dtau);
-        let tau_own = self.mul(tau, own);
-        let p_d = self.neg(tau_own);
-        let t2 = self.mul(p_d, dd);
-        let mut total = self.add(t1, t2);
-        if self.as_const(dw2) != Some(0.0) {
-            match kind {
-                Hom::Ec => {
-                    let half = self.constant(0.5);
-                    let te = self.mul(tau, es);
-                    let p_w2 = self.mul(half, te);
-                    let t3 = self.mul(p_w2, dw2);
-                    total = self.add(total, t3);
-                }
-                Hom::Es => return Err(DiffError::DiscriminantDependsOnVariable),
-            }
+        if self.as_const(dd) != Some(0.0) || self.as_const(dc) != Some(0.0) {
+            // d/dd and d/dc are not needed: coefficients never depend on the
+            // state or the phases.
+            return Err(DiffError::DiscriminantDependsOnVariable);
         }
-        Ok(total)
+        Ok(self.mul(p_tau, dtau))
     }
 
     /// Replace variable `var` by the expression `by` everywhere below `id`.
@@ -510,8 +499,9 @@ impl Graph {
                 Node::Cos(a) => v(a).cos(),
                 Node::Abs(a) => v(a).abs(),
                 Node::Sign(a) => v(a).signum(),
-                Node::Hom(kind, d, w2, tau) => {
-                    let (d, w2, tau) = (v(d), v(w2), v(tau));
+                Node::Hom(kind, d, c, tau) => {
+                    let (d, tau) = (v(d), v(tau));
+                    let w2 = d * d - v(c);
                     let e = (-d * tau).exp();
                     let (c, s) = if w2 > 0.0 {
                         let w = w2.sqrt();
@@ -619,7 +609,7 @@ mod tests {
         let mut g = Graph::new();
         let tau = g.var(0);
         for (d, w2) in [(0.3, -4.0), (0.2, 3.0), (-0.1, -1.0), (1.0, 0.0)] {
-            let (dn, wn) = (g.constant(d), g.constant(w2));
+            let (dn, wn) = (g.constant(d), g.constant(d * d - w2));
             for kind in [Hom::Ec, Hom::Es] {
                 let f = g.hom(kind, dn, wn, tau);
                 let df = g.diff(f, 0).unwrap();

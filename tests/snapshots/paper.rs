@@ -576,24 +576,23 @@ pub fn flow_4(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d + mu4 * t0 * 0.5;
-    let t3 = t2.powi(2) - c;
-    let t4 = c - W.powi(2);
-    let t5 = W * (t2 * 2.0);
-    let t6 = 1.0 / (t4.powi(2) + t5.powi(2));
-    let t7 = t1 * t4 * t6;
-    let t8 = t6 * (t1 * t5);
-    let t9 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
-    let t10 = phi0.cos();
-    let t11 = phi0.sin();
-    let t12 = phi1.cos();
-    let t13 = phi1.sin();
-    let t14 = x0 - (t9 + (t7 * t10 + t8 * t11));
-    let t15 = v0 - W * (t8 * t10 - t7 * t11);
-    let t16 = (phi1 - phi0) / W;
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t16);
+    let t3 = c - W.powi(2);
+    let t4 = W * (t2 * 2.0);
+    let t5 = 1.0 / (t3.powi(2) + t4.powi(2));
+    let t6 = t1 * t3 * t5;
+    let t7 = t5 * (t1 * t4);
+    let t8 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
+    let t9 = phi0.cos();
+    let t10 = phi0.sin();
+    let t11 = phi1.cos();
+    let t12 = phi1.sin();
+    let t13 = x0 - (t8 + (t6 * t9 + t7 * t10));
+    let t14 = v0 - W * (t7 * t9 - t6 * t10);
+    let t15 = (phi1 - phi0) / W;
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t15);
     [
-        t9 + (t7 * t12 + t8 * t13) + (t14 * ec17 + es17 * (t15 + t2 * t14)),
-        W * (t8 * t12 - t7 * t13) + (t15 * ec17 - es17 * (c * t14 + t2 * t15)),
+        t8 + (t6 * t11 + t7 * t12) + (t13 * ec16 + es16 * (t14 + t2 * t13)),
+        W * (t7 * t11 - t6 * t12) + (t14 * ec16 - es16 * (c * t13 + t2 * t14)),
     ]
 }
 /// Normal vector field of domain 4 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
@@ -653,24 +652,23 @@ pub fn flow_3(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi0.cos();
-    let t6 = phi0.sin();
-    let t7 = phi1.cos();
-    let t8 = phi1.sin();
-    let t9 = (phi1 - phi0) / W;
-    let t10 = W * (t2 * 2.0);
-    let t11 = 1.0 / (t4.powi(2) + t10.powi(2));
-    let t12 = t1 * t4 * t11;
-    let t13 = t11 * (t1 * t10);
-    let t14 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t15 = x0 - (t14 + (t5 * t12 + t6 * t13));
-    let t16 = v0 - W * (t5 * t13 - t6 * t12);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t9);
+    let t3 = c - W.powi(2);
+    let t4 = phi0.cos();
+    let t5 = phi0.sin();
+    let t6 = phi1.cos();
+    let t7 = phi1.sin();
+    let t8 = (phi1 - phi0) / W;
+    let t9 = W * (t2 * 2.0);
+    let t10 = 1.0 / (t3.powi(2) + t9.powi(2));
+    let t11 = t1 * t3 * t10;
+    let t12 = t10 * (t1 * t9);
+    let t13 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
+    let t15 = v0 - W * (t4 * t12 - t5 * t11);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t8);
     [
-        t14 + (t7 * t12 + t8 * t13) + (t15 * ec17 + es17 * (t16 + t2 * t15)),
-        W * (t7 * t13 - t8 * t12) + (t16 * ec17 - es17 * (c * t15 + t2 * t16)),
+        t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
+        W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (c * t14 + t2 * t15)),
     ]
 }
 /// Normal vector field of domain 3 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
@@ -727,24 +725,23 @@ pub fn flow_1(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi0.cos();
-    let t6 = phi0.sin();
-    let t7 = phi1.cos();
-    let t8 = phi1.sin();
-    let t9 = (phi1 - phi0) / W;
-    let t10 = W * (t2 * 2.0);
-    let t11 = 1.0 / (t4.powi(2) + t10.powi(2));
-    let t12 = t1 * t4 * t11;
-    let t13 = t11 * (t1 * t10);
-    let t14 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t15 = x0 - (t14 + (t5 * t12 + t6 * t13));
-    let t16 = v0 - W * (t5 * t13 - t6 * t12);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t9);
+    let t3 = c - W.powi(2);
+    let t4 = phi0.cos();
+    let t5 = phi0.sin();
+    let t6 = phi1.cos();
+    let t7 = phi1.sin();
+    let t8 = (phi1 - phi0) / W;
+    let t9 = W * (t2 * 2.0);
+    let t10 = 1.0 / (t3.powi(2) + t9.powi(2));
+    let t11 = t1 * t3 * t10;
+    let t12 = t10 * (t1 * t9);
+    let t13 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
+    let t15 = v0 - W * (t4 * t12 - t5 * t11);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t8);
     [
-        t14 + (t7 * t12 + t8 * t13) + (t15 * ec17 + es17 * (t16 + t2 * t15)),
-        W * (t7 * t13 - t8 * t12) + (t16 * ec17 - es17 * (c * t15 + t2 * t16)),
+        t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
+        W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (c * t14 + t2 * t15)),
     ]
 }
 /// Normal vector field of domain 1 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
@@ -805,24 +802,23 @@ pub fn flow_2(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d + 0.5 * (mu1 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi0.cos();
-    let t6 = phi0.sin();
-    let t7 = phi1.cos();
-    let t8 = phi1.sin();
-    let t9 = (phi1 - phi0) / W;
-    let t10 = W * (t2 * 2.0);
-    let t11 = 1.0 / (t4.powi(2) + t10.powi(2));
-    let t12 = t1 * t4 * t11;
-    let t13 = t11 * (t1 * t10);
-    let t14 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
-    let t15 = x0 - (t14 + (t5 * t12 + t6 * t13));
-    let t16 = v0 - W * (t5 * t13 - t6 * t12);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t9);
+    let t3 = c - W.powi(2);
+    let t4 = phi0.cos();
+    let t5 = phi0.sin();
+    let t6 = phi1.cos();
+    let t7 = phi1.sin();
+    let t8 = (phi1 - phi0) / W;
+    let t9 = W * (t2 * 2.0);
+    let t10 = 1.0 / (t3.powi(2) + t9.powi(2));
+    let t11 = t1 * t3 * t10;
+    let t12 = t10 * (t1 * t9);
+    let t13 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
+    let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
+    let t15 = v0 - W * (t4 * t12 - t5 * t11);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t8);
     [
-        t14 + (t7 * t12 + t8 * t13) + (t15 * ec17 + es17 * (t16 + t2 * t15)),
-        W * (t7 * t13 - t8 * t12) + (t16 * ec17 - es17 * (c * t15 + t2 * t16)),
+        t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
+        W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (c * t14 + t2 * t15)),
     ]
 }
 /// Normal vector field of domain 2 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
@@ -871,24 +867,23 @@ pub fn residual_1_11(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t15 = V - W * (t10 * t12 - t9 * t13);
-    let t16 = 1.0 / W * (phi1 - phi0);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t16);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t14 = V - W * (t9 * t11 - t8 * t12);
+    let t15 = 1.0 / W * (phi1 - phi0);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t15);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t14 * ec17 + es17 * (t15 + t2 * t14))),
-        -V + (W * (t5 * t10 - t6 * t9) + (t15 * ec17 - es17 * (c * t14 + t2 * t15))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
+        -V + (W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (c * t13 + t2 * t14))),
     )
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -913,52 +908,51 @@ pub fn mapping_1_11(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t10 * t15 + t11 * t16;
-    let t18 = t11 * t15 - t10 * t16;
-    let t19 = x0 - (t12 + t17);
-    let t20 = V - W * t18;
-    let t21 = t7 * (phi1 - phi0);
-    let (ec22, es22) = ::stickslip::homogeneous::general(t2, t3, t21);
-    let t23 = t20 + t2 * t19;
-    let t24 = c * t19 + t2 * t20;
-    let t25 = t2 * es22;
-    let t26 = t7 * (t3 * es22 - t2 * ec22);
-    let t27 = t19 * t26;
-    let t28 = t7 * (ec22 - t25);
-    let t29 = W * t17;
-    let t30 = t23 * t28;
-    let t31 = t20 * t26;
-    let t32 = -(t24 * t28);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t9 * t14 + t10 * t15;
+    let t17 = t10 * t14 - t9 * t15;
+    let t18 = x0 - (t11 + t16);
+    let t19 = V - W * t17;
+    let t20 = t6 * (phi1 - phi0);
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t20);
+    let t22 = t19 + t2 * t18;
+    let t23 = c * t18 + t2 * t19;
+    let t24 = t2 * es21;
+    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t26 = t18 * t25;
+    let t27 = t6 * (ec21 - t24);
+    let t28 = W * t16;
+    let t29 = t22 * t27;
+    let t30 = t19 * t25;
+    let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t19 * ec22 + es22 * t23)),
-            -V + (W * t14 + (t20 * ec22 - es22 * t24)),
+            -x1 + (t11 + t12 + (t18 * ec21 + es21 * t22)),
+            -V + (W * t13 + (t19 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec22 + t25,
-            -(t18 * ec22 + t27) + (-t30 + es22 * (t29 - t2 * t18)),
-            -(c * es22),
-            ec22 * t29 - t31 - (t32 + es22 * (-(c * t18) + t2 * t29)),
+            ec21 + t24,
+            -(t17 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t17)),
+            -(c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(c * t17) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t27 + t30),
+            t13 + (t26 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -985,24 +979,23 @@ pub fn residual_1_22(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t15 = 1.0 / W * (phi1 - phi0);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, t3, t15);
-    let t17 = V1 - W * (t10 * t12 - t9 * t13);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t14 = 1.0 / W * (phi1 - phi0);
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t14);
+    let t16 = V1 - W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t14 * ec16 + es16 * (t2 * t14 + t17))),
-        -V1 + (W * (t5 * t10 - t6 * t9) + (ec16 * t17 - es16 * (c * t14 + t2 * t17))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec15 + es15 * (t2 * t13 + t16))),
+        -V1 + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t13 + t2 * t16))),
     )
 }
 /// Local mapping `1_22` in domain 1 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1028,52 +1021,51 @@ pub fn mapping_1_22(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t10 * t15 + t11 * t16;
-    let t18 = t11 * t15 - t10 * t16;
-    let t19 = x0 - (t12 + t17);
-    let t20 = t7 * (phi1 - phi0);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, t3, t20);
-    let t22 = t2 * es21;
-    let t23 = t7 * (t3 * es21 - t2 * ec21);
-    let t24 = t19 * t23;
-    let t25 = t7 * (ec21 - t22);
-    let t26 = W * t17;
-    let t27 = V1 - W * t18;
-    let t28 = t2 * t19 + t27;
-    let t29 = c * t19 + t2 * t27;
-    let t30 = t25 * t28;
-    let t31 = t23 * t27;
-    let t32 = -(t25 * t29);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t9 * t14 + t10 * t15;
+    let t17 = t10 * t14 - t9 * t15;
+    let t18 = x0 - (t11 + t16);
+    let t19 = t6 * (phi1 - phi0);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t19);
+    let t21 = t2 * es20;
+    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t23 = t18 * t22;
+    let t24 = t6 * (ec20 - t21);
+    let t25 = W * t16;
+    let t26 = V1 - W * t17;
+    let t27 = t2 * t18 + t26;
+    let t28 = c * t18 + t2 * t26;
+    let t29 = t24 * t27;
+    let t30 = t22 * t26;
+    let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t19 * ec21 + es21 * t28)),
-            -V1 + (W * t14 + (ec21 * t27 - es21 * t29)),
+            -x1 + (t11 + t12 + (t18 * ec20 + es20 * t27)),
+            -V1 + (W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec21 + t22,
-            -(t18 * ec21 + t24) + (es21 * (t26 - t2 * t18) - t30),
-            -(c * es21),
-            ec21 * t26 - t31 - (es21 * (-(c * t18) + t2 * t26) + t32),
+            ec20 + t21,
+            -(t17 * ec20 + t23) + (es20 * (t25 - t2 * t17) - t29),
+            -(c * es20),
+            ec20 * t25 - t30 - (es20 * (-(c * t17) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t24 + t30),
+            t13 + (t23 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1100,24 +1092,23 @@ pub fn residual_1_21(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t15 = V - W * (t10 * t12 - t9 * t13);
-    let t16 = 1.0 / W * (phi1 - phi0);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t16);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t14 = V - W * (t9 * t11 - t8 * t12);
+    let t15 = 1.0 / W * (phi1 - phi0);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t15);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t14 * ec17 + es17 * (t15 + t2 * t14))),
-        -V1 + (W * (t5 * t10 - t6 * t9) + (t15 * ec17 - es17 * (c * t14 + t2 * t15))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
+        -V1 + (W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (c * t13 + t2 * t14))),
     )
 }
 /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1143,52 +1134,51 @@ pub fn mapping_1_21(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t10 * t15 + t11 * t16;
-    let t18 = t11 * t15 - t10 * t16;
-    let t19 = x0 - (t12 + t17);
-    let t20 = V - W * t18;
-    let t21 = t7 * (phi1 - phi0);
-    let (ec22, es22) = ::stickslip::homogeneous::general(t2, t3, t21);
-    let t23 = t20 + t2 * t19;
-    let t24 = c * t19 + t2 * t20;
-    let t25 = t2 * es22;
-    let t26 = t7 * (t3 * es22 - t2 * ec22);
-    let t27 = t19 * t26;
-    let t28 = t7 * (ec22 - t25);
-    let t29 = W * t17;
-    let t30 = t23 * t28;
-    let t31 = t20 * t26;
-    let t32 = -(t24 * t28);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t9 * t14 + t10 * t15;
+    let t17 = t10 * t14 - t9 * t15;
+    let t18 = x0 - (t11 + t16);
+    let t19 = V - W * t17;
+    let t20 = t6 * (phi1 - phi0);
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t20);
+    let t22 = t19 + t2 * t18;
+    let t23 = c * t18 + t2 * t19;
+    let t24 = t2 * es21;
+    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t26 = t18 * t25;
+    let t27 = t6 * (ec21 - t24);
+    let t28 = W * t16;
+    let t29 = t22 * t27;
+    let t30 = t19 * t25;
+    let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t19 * ec22 + es22 * t23)),
-            -V1 + (W * t14 + (t20 * ec22 - es22 * t24)),
+            -x1 + (t11 + t12 + (t18 * ec21 + es21 * t22)),
+            -V1 + (W * t13 + (t19 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec22 + t25,
-            -(t18 * ec22 + t27) + (-t30 + es22 * (t29 - t2 * t18)),
-            -(c * es22),
-            ec22 * t29 - t31 - (t32 + es22 * (-(c * t18) + t2 * t29)),
+            ec21 + t24,
+            -(t17 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t17)),
+            -(c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(c * t17) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t27 + t30),
+            t13 + (t26 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1215,24 +1205,23 @@ pub fn residual_1_12(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t15 = 1.0 / W * (phi1 - phi0);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, t3, t15);
-    let t17 = V1 - W * (t10 * t12 - t9 * t13);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t14 = 1.0 / W * (phi1 - phi0);
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t14);
+    let t16 = V1 - W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t14 * ec16 + es16 * (t2 * t14 + t17))),
-        -V + (W * (t5 * t10 - t6 * t9) + (ec16 * t17 - es16 * (c * t14 + t2 * t17))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec15 + es15 * (t2 * t13 + t16))),
+        -V + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t13 + t2 * t16))),
     )
 }
 /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1258,52 +1247,51 @@ pub fn mapping_1_12(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = -(t0 * (muk * (m * g) + V * mu2) / c);
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t10 * t15 + t11 * t16;
-    let t18 = t11 * t15 - t10 * t16;
-    let t19 = x0 - (t12 + t17);
-    let t20 = t7 * (phi1 - phi0);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, t3, t20);
-    let t22 = t2 * es21;
-    let t23 = t7 * (t3 * es21 - t2 * ec21);
-    let t24 = t19 * t23;
-    let t25 = t7 * (ec21 - t22);
-    let t26 = W * t17;
-    let t27 = V1 - W * t18;
-    let t28 = t2 * t19 + t27;
-    let t29 = c * t19 + t2 * t27;
-    let t30 = t25 * t28;
-    let t31 = t23 * t27;
-    let t32 = -(t25 * t29);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t9 * t14 + t10 * t15;
+    let t17 = t10 * t14 - t9 * t15;
+    let t18 = x0 - (t11 + t16);
+    let t19 = t6 * (phi1 - phi0);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t19);
+    let t21 = t2 * es20;
+    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t23 = t18 * t22;
+    let t24 = t6 * (ec20 - t21);
+    let t25 = W * t16;
+    let t26 = V1 - W * t17;
+    let t27 = t2 * t18 + t26;
+    let t28 = c * t18 + t2 * t26;
+    let t29 = t24 * t27;
+    let t30 = t22 * t26;
+    let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t19 * ec21 + es21 * t28)),
-            -V + (W * t14 + (ec21 * t27 - es21 * t29)),
+            -x1 + (t11 + t12 + (t18 * ec20 + es20 * t27)),
+            -V + (W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec21 + t22,
-            -(t18 * ec21 + t24) + (es21 * (t26 - t2 * t18) - t30),
-            -(c * es21),
-            ec21 * t26 - t31 - (es21 * (-(c * t18) + t2 * t26) + t32),
+            ec20 + t21,
+            -(t17 * ec20 + t23) + (es20 * (t25 - t2 * t17) - t29),
+            -(c * es20),
+            ec20 * t25 - t30 - (es20 * (-(c * t17) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t24 + t30),
+            t13 + (t23 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1331,24 +1319,23 @@ pub fn residual_2_22(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d + 0.5 * (mu1 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let t15 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t16 = V1 - W * (t10 * t12 - t9 * t13);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t14);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = 1.0 / W * (phi1 - phi0);
+    let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t15 = V1 - W * (t9 * t11 - t8 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t15 * ec17 + es17 * (t16 + t2 * t15))),
-        -V1 + (W * (t5 * t10 - t6 * t9) + (t16 * ec17 - es17 * (c * t15 + t2 * t16))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
+        -V1 + (W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
     )
 }
 /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1375,52 +1362,51 @@ pub fn mapping_2_22(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d + 0.5 * (mu1 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t7 * (phi1 - phi0);
-    let t18 = t10 * t15 + t11 * t16;
-    let t19 = t11 * t15 - t10 * t16;
-    let t20 = x0 - (t12 + t18);
-    let t21 = V1 - W * t19;
-    let (ec22, es22) = ::stickslip::homogeneous::general(t2, t3, t17);
-    let t23 = t21 + t2 * t20;
-    let t24 = c * t20 + t2 * t21;
-    let t25 = t2 * es22;
-    let t26 = t7 * (t3 * es22 - t2 * ec22);
-    let t27 = t20 * t26;
-    let t28 = t7 * (ec22 - t25);
-    let t29 = W * t18;
-    let t30 = t23 * t28;
-    let t31 = t21 * t26;
-    let t32 = -(t24 * t28);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t6 * (phi1 - phi0);
+    let t17 = t9 * t14 + t10 * t15;
+    let t18 = t10 * t14 - t9 * t15;
+    let t19 = x0 - (t11 + t17);
+    let t20 = V1 - W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t22 = t20 + t2 * t19;
+    let t23 = c * t19 + t2 * t20;
+    let t24 = t2 * es21;
+    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t26 = t19 * t25;
+    let t27 = t6 * (ec21 - t24);
+    let t28 = W * t17;
+    let t29 = t22 * t27;
+    let t30 = t20 * t25;
+    let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t20 * ec22 + es22 * t23)),
-            -V1 + (W * t14 + (t21 * ec22 - es22 * t24)),
+            -x1 + (t11 + t12 + (t19 * ec21 + es21 * t22)),
+            -V1 + (W * t13 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec22 + t25,
-            -(t19 * ec22 + t27) + (-t30 + es22 * (t29 - t2 * t19)),
-            -(c * es22),
-            ec22 * t29 - t31 - (t32 + es22 * (-(c * t19) + t2 * t29)),
+            ec21 + t24,
+            -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
+            -(c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t27 + t30),
+            t13 + (t26 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1447,24 +1433,23 @@ pub fn residual_3_33(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let t15 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t16 = V2 - W * (t10 * t12 - t9 * t13);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t14);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = 1.0 / W * (phi1 - phi0);
+    let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t15 = V2 - W * (t9 * t11 - t8 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t15 * ec17 + es17 * (t16 + t2 * t15))),
-        -V2 + (W * (t5 * t10 - t6 * t9) + (t16 * ec17 - es17 * (c * t15 + t2 * t16))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
+        -V2 + (W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
     )
 }
 /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1490,52 +1475,51 @@ pub fn mapping_3_33(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t7 * (phi1 - phi0);
-    let t18 = t10 * t15 + t11 * t16;
-    let t19 = t11 * t15 - t10 * t16;
-    let t20 = x0 - (t12 + t18);
-    let t21 = V2 - W * t19;
-    let (ec22, es22) = ::stickslip::homogeneous::general(t2, t3, t17);
-    let t23 = t21 + t2 * t20;
-    let t24 = c * t20 + t2 * t21;
-    let t25 = t2 * es22;
-    let t26 = t7 * (t3 * es22 - t2 * ec22);
-    let t27 = t20 * t26;
-    let t28 = t7 * (ec22 - t25);
-    let t29 = W * t18;
-    let t30 = t23 * t28;
-    let t31 = t21 * t26;
-    let t32 = -(t24 * t28);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t6 * (phi1 - phi0);
+    let t17 = t9 * t14 + t10 * t15;
+    let t18 = t10 * t14 - t9 * t15;
+    let t19 = x0 - (t11 + t17);
+    let t20 = V2 - W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t22 = t20 + t2 * t19;
+    let t23 = c * t19 + t2 * t20;
+    let t24 = t2 * es21;
+    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t26 = t19 * t25;
+    let t27 = t6 * (ec21 - t24);
+    let t28 = W * t17;
+    let t29 = t22 * t27;
+    let t30 = t20 * t25;
+    let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t20 * ec22 + es22 * t23)),
-            -V2 + (W * t14 + (t21 * ec22 - es22 * t24)),
+            -x1 + (t11 + t12 + (t19 * ec21 + es21 * t22)),
+            -V2 + (W * t13 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec22 + t25,
-            -(t19 * ec22 + t27) + (-t30 + es22 * (t29 - t2 * t19)),
-            -(c * es22),
-            ec22 * t29 - t31 - (t32 + es22 * (-(c * t19) + t2 * t29)),
+            ec21 + t24,
+            -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
+            -(c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t27 + t30),
+            t13 + (t26 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1561,24 +1545,23 @@ pub fn residual_3_11(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let t15 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, t3, t14);
-    let t17 = V - W * (t10 * t12 - t9 * t13);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = 1.0 / W * (phi1 - phi0);
+    let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t13);
+    let t16 = V - W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t15 * ec16 + es16 * (t2 * t15 + t17))),
-        -V + (W * (t5 * t10 - t6 * t9) + (ec16 * t17 - es16 * (c * t15 + t2 * t17))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec15 + es15 * (t2 * t14 + t16))),
+        -V + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t14 + t2 * t16))),
     )
 }
 /// Local mapping `3_11` in domain 3 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1603,52 +1586,51 @@ pub fn mapping_3_11(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t7 * (phi1 - phi0);
-    let t18 = t10 * t15 + t11 * t16;
-    let t19 = t11 * t15 - t10 * t16;
-    let t20 = x0 - (t12 + t18);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, t3, t17);
-    let t22 = t2 * es21;
-    let t23 = t7 * (t3 * es21 - t2 * ec21);
-    let t24 = t20 * t23;
-    let t25 = t7 * (ec21 - t22);
-    let t26 = W * t18;
-    let t27 = V - W * t19;
-    let t28 = t2 * t20 + t27;
-    let t29 = c * t20 + t2 * t27;
-    let t30 = t25 * t28;
-    let t31 = t23 * t27;
-    let t32 = -(t25 * t29);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t6 * (phi1 - phi0);
+    let t17 = t9 * t14 + t10 * t15;
+    let t18 = t10 * t14 - t9 * t15;
+    let t19 = x0 - (t11 + t17);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t21 = t2 * es20;
+    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t23 = t19 * t22;
+    let t24 = t6 * (ec20 - t21);
+    let t25 = W * t17;
+    let t26 = V - W * t18;
+    let t27 = t2 * t19 + t26;
+    let t28 = c * t19 + t2 * t26;
+    let t29 = t24 * t27;
+    let t30 = t22 * t26;
+    let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t20 * ec21 + es21 * t28)),
-            -V + (W * t14 + (ec21 * t27 - es21 * t29)),
+            -x1 + (t11 + t12 + (t19 * ec20 + es20 * t27)),
+            -V + (W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec21 + t22,
-            -(t19 * ec21 + t24) + (es21 * (t26 - t2 * t19) - t30),
-            -(c * es21),
-            ec21 * t26 - t31 - (es21 * (-(c * t19) + t2 * t26) + t32),
+            ec20 + t21,
+            -(t18 * ec20 + t23) + (es20 * (t25 - t2 * t18) - t29),
+            -(c * es20),
+            ec20 * t25 - t30 - (es20 * (-(c * t18) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t24 + t30),
+            t13 + (t23 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1675,24 +1657,23 @@ pub fn residual_3_13(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let t15 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let t16 = V2 - W * (t10 * t12 - t9 * t13);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t14);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = 1.0 / W * (phi1 - phi0);
+    let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let t15 = V2 - W * (t9 * t11 - t8 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t15 * ec17 + es17 * (t16 + t2 * t15))),
-        -V + (W * (t5 * t10 - t6 * t9) + (t16 * ec17 - es17 * (c * t15 + t2 * t16))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
+        -V + (W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
     )
 }
 /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1718,52 +1699,51 @@ pub fn mapping_3_13(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t7 * (phi1 - phi0);
-    let t18 = t10 * t15 + t11 * t16;
-    let t19 = t11 * t15 - t10 * t16;
-    let t20 = x0 - (t12 + t18);
-    let t21 = V2 - W * t19;
-    let (ec22, es22) = ::stickslip::homogeneous::general(t2, t3, t17);
-    let t23 = t21 + t2 * t20;
-    let t24 = c * t20 + t2 * t21;
-    let t25 = t2 * es22;
-    let t26 = t7 * (t3 * es22 - t2 * ec22);
-    let t27 = t20 * t26;
-    let t28 = t7 * (ec22 - t25);
-    let t29 = W * t18;
-    let t30 = t23 * t28;
-    let t31 = t21 * t26;
-    let t32 = -(t24 * t28);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t6 * (phi1 - phi0);
+    let t17 = t9 * t14 + t10 * t15;
+    let t18 = t10 * t14 - t9 * t15;
+    let t19 = x0 - (t11 + t17);
+    let t20 = V2 - W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t22 = t20 + t2 * t19;
+    let t23 = c * t19 + t2 * t20;
+    let t24 = t2 * es21;
+    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t26 = t19 * t25;
+    let t27 = t6 * (ec21 - t24);
+    let t28 = W * t17;
+    let t29 = t22 * t27;
+    let t30 = t20 * t25;
+    let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t20 * ec22 + es22 * t23)),
-            -V + (W * t14 + (t21 * ec22 - es22 * t24)),
+            -x1 + (t11 + t12 + (t19 * ec21 + es21 * t22)),
+            -V + (W * t13 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec22 + t25,
-            -(t19 * ec22 + t27) + (-t30 + es22 * (t29 - t2 * t19)),
-            -(c * es22),
-            ec22 * t29 - t31 - (t32 + es22 * (-(c * t19) + t2 * t29)),
+            ec21 + t24,
+            -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
+            -(c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t27 + t30),
+            t13 + (t26 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1790,24 +1770,23 @@ pub fn residual_3_31(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = W * (t2 * 2.0);
-    let t8 = 1.0 / (t4.powi(2) + t7.powi(2));
-    let t9 = t1 * t4 * t8;
-    let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let t15 = x0 - (t11 + (t9 * t12 + t10 * t13));
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, t3, t14);
-    let t17 = V - W * (t10 * t12 - t9 * t13);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = W * (t2 * 2.0);
+    let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
+    let t8 = t1 * t3 * t7;
+    let t9 = t7 * (t1 * t6);
+    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = 1.0 / W * (phi1 - phi0);
+    let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t13);
+    let t16 = V - W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t11 + (t5 * t9 + t6 * t10) + (t15 * ec16 + es16 * (t2 * t15 + t17))),
-        -V2 + (W * (t5 * t10 - t6 * t9) + (ec16 * t17 - es16 * (c * t15 + t2 * t17))),
+        -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec15 + es15 * (t2 * t14 + t16))),
+        -V2 + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t14 + t2 * t16))),
     )
 }
 /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1833,52 +1812,51 @@ pub fn mapping_3_31(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = -c + t2.powi(2);
-    let t4 = c - W.powi(2);
-    let t5 = phi1.cos();
-    let t6 = phi1.sin();
-    let t7 = 1.0 / W;
-    let t8 = W * (t2 * 2.0);
-    let t9 = 1.0 / (t4.powi(2) + t8.powi(2));
-    let t10 = t1 * t4 * t9;
-    let t11 = t9 * (t1 * t8);
-    let t12 = t0 * (muk * (m * g) - V * mu3) / c;
-    let t13 = t5 * t10 + t6 * t11;
-    let t14 = t5 * t11 - t6 * t10;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t7 * (phi1 - phi0);
-    let t18 = t10 * t15 + t11 * t16;
-    let t19 = t11 * t15 - t10 * t16;
-    let t20 = x0 - (t12 + t18);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, t3, t17);
-    let t22 = t2 * es21;
-    let t23 = t7 * (t3 * es21 - t2 * ec21);
-    let t24 = t20 * t23;
-    let t25 = t7 * (ec21 - t22);
-    let t26 = W * t18;
-    let t27 = V - W * t19;
-    let t28 = t2 * t20 + t27;
-    let t29 = c * t20 + t2 * t27;
-    let t30 = t25 * t28;
-    let t31 = t23 * t27;
-    let t32 = -(t25 * t29);
+    let t3 = c - W.powi(2);
+    let t4 = phi1.cos();
+    let t5 = phi1.sin();
+    let t6 = 1.0 / W;
+    let t7 = W * (t2 * 2.0);
+    let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
+    let t9 = t1 * t3 * t8;
+    let t10 = t8 * (t1 * t7);
+    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t12 = t4 * t9 + t5 * t10;
+    let t13 = t4 * t10 - t5 * t9;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t6 * (phi1 - phi0);
+    let t17 = t9 * t14 + t10 * t15;
+    let t18 = t10 * t14 - t9 * t15;
+    let t19 = x0 - (t11 + t17);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t21 = t2 * es20;
+    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t23 = t19 * t22;
+    let t24 = t6 * (ec20 - t21);
+    let t25 = W * t17;
+    let t26 = V - W * t18;
+    let t27 = t2 * t19 + t26;
+    let t28 = c * t19 + t2 * t26;
+    let t29 = t24 * t27;
+    let t30 = t22 * t26;
+    let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t12 + t13 + (t20 * ec21 + es21 * t28)),
-            -V2 + (W * t14 + (ec21 * t27 - es21 * t29)),
+            -x1 + (t11 + t12 + (t19 * ec20 + es20 * t27)),
+            -V2 + (W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec21 + t22,
-            -(t19 * ec21 + t24) + (es21 * (t26 - t2 * t19) - t30),
-            -(c * es21),
-            ec21 * t26 - t31 - (es21 * (-(c * t19) + t2 * t26) + t32),
+            ec20 + t21,
+            -(t18 * ec20 + t23) + (es20 * (t25 - t2 * t18) - t29),
+            -(c * es20),
+            ec20 * t25 - t30 - (es20 * (-(c * t18) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t14 + (t24 + t30),
+            t13 + (t23 + t29),
             0.0,
-            -(W * t13) + (t31 + t32),
+            -(W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1906,24 +1884,23 @@ pub fn residual_4_33(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d + mu4 * t0 * 0.5;
-    let t3 = t2.powi(2) - c;
-    let t4 = c - W.powi(2);
-    let t5 = W * (t2 * 2.0);
-    let t6 = 1.0 / (t4.powi(2) + t5.powi(2));
-    let t7 = t1 * t4 * t6;
-    let t8 = t6 * (t1 * t5);
-    let t9 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
-    let t10 = phi1.cos();
-    let t11 = phi1.sin();
-    let t12 = phi0.cos();
-    let t13 = phi0.sin();
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let t15 = x0 - (t9 + (t7 * t12 + t8 * t13));
-    let t16 = V2 - W * (t8 * t12 - t7 * t13);
-    let (ec17, es17) = ::stickslip::homogeneous::general(t2, t3, t14);
+    let t3 = c - W.powi(2);
+    let t4 = W * (t2 * 2.0);
+    let t5 = 1.0 / (t3.powi(2) + t4.powi(2));
+    let t6 = t1 * t3 * t5;
+    let t7 = t5 * (t1 * t4);
+    let t8 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
+    let t9 = phi1.cos();
+    let t10 = phi1.sin();
+    let t11 = phi0.cos();
+    let t12 = phi0.sin();
+    let t13 = 1.0 / W * (phi1 - phi0);
+    let t14 = x0 - (t8 + (t6 * t11 + t7 * t12));
+    let t15 = V2 - W * (t7 * t11 - t6 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (t9 + (t7 * t10 + t8 * t11) + (t15 * ec17 + es17 * (t16 + t2 * t15))),
-        -V2 + (W * (t8 * t10 - t7 * t11) + (t16 * ec17 - es17 * (c * t15 + t2 * t16))),
+        -x1 + (t8 + (t6 * t9 + t7 * t10) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
+        -V2 + (W * (t7 * t9 - t6 * t10) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
     )
 }
 /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1950,52 +1927,51 @@ pub fn mapping_4_33(
     let t0 = 1.0 / m;
     let t1 = Q0 * t0;
     let t2 = d + mu4 * t0 * 0.5;
-    let t3 = t2.powi(2) - c;
-    let t4 = c - W.powi(2);
-    let t5 = W * (t2 * 2.0);
-    let t6 = 1.0 / (t4.powi(2) + t5.powi(2));
-    let t7 = t1 * t4 * t6;
-    let t8 = t6 * (t1 * t5);
-    let t9 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
-    let t10 = phi1.cos();
-    let t11 = phi1.sin();
-    let t12 = t7 * t10 + t8 * t11;
-    let t13 = t8 * t10 - t7 * t11;
-    let t14 = 1.0 / W;
-    let t15 = phi0.cos();
-    let t16 = phi0.sin();
-    let t17 = t14 * (phi1 - phi0);
-    let t18 = t7 * t15 + t8 * t16;
-    let t19 = t8 * t15 - t7 * t16;
-    let t20 = x0 - (t9 + t18);
-    let t21 = V2 - W * t19;
-    let (ec22, es22) = ::stickslip::homogeneous::general(t2, t3, t17);
-    let t23 = t21 + t2 * t20;
-    let t24 = c * t20 + t2 * t21;
-    let t25 = t2 * es22;
-    let t26 = t14 * (t3 * es22 - t2 * ec22);
-    let t27 = t20 * t26;
-    let t28 = t14 * (ec22 - t25);
-    let t29 = W * t18;
-    let t30 = t23 * t28;
-    let t31 = t21 * t26;
-    let t32 = -(t24 * t28);
+    let t3 = c - W.powi(2);
+    let t4 = W * (t2 * 2.0);
+    let t5 = 1.0 / (t3.powi(2) + t4.powi(2));
+    let t6 = t1 * t3 * t5;
+    let t7 = t5 * (t1 * t4);
+    let t8 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
+    let t9 = phi1.cos();
+    let t10 = phi1.sin();
+    let t11 = t6 * t9 + t7 * t10;
+    let t12 = t7 * t9 - t6 * t10;
+    let t13 = 1.0 / W;
+    let t14 = phi0.cos();
+    let t15 = phi0.sin();
+    let t16 = t13 * (phi1 - phi0);
+    let t17 = t6 * t14 + t7 * t15;
+    let t18 = t7 * t14 - t6 * t15;
+    let t19 = x0 - (t8 + t17);
+    let t20 = V2 - W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t22 = t20 + t2 * t19;
+    let t23 = c * t19 + t2 * t20;
+    let t24 = t2 * es21;
+    let t25 = t13 * ((t2.powi(2) - c) * es21 - t2 * ec21);
+    let t26 = t19 * t25;
+    let t27 = t13 * (ec21 - t24);
+    let t28 = W * t17;
+    let t29 = t22 * t27;
+    let t30 = t20 * t25;
+    let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (t9 + t12 + (t20 * ec22 + es22 * t23)),
-            -V2 + (W * t13 + (t21 * ec22 - es22 * t24)),
+            -x1 + (t8 + t11 + (t19 * ec21 + es21 * t22)),
+            -V2 + (W * t12 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
-            ec22 + t25,
-            -(t19 * ec22 + t27) + (-t30 + es22 * (t29 - t2 * t19)),
-            -(c * es22),
-            ec22 * t29 - t31 - (t32 + es22 * (-(c * t19) + t2 * t29)),
+            ec21 + t24,
+            -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
+            -(c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
-            t13 + (t27 + t30),
+            t12 + (t26 + t29),
             0.0,
-            -(W * t12) + (t31 + t32),
+            -(W * t11) + (t30 + t31),
         ),
     }
 }
