@@ -301,6 +301,41 @@ struct ParamsCode {
     free_idx: Vec<TokenStream>,
 }
 
+impl ParamsCode {
+    /// `Params`, its `Default`, and `ParamSet` with the given `check` method.
+    fn items(&self, params_doc: &TokenStream, check_fn: &TokenStream) -> TokenStream {
+        let ParamsCode {
+            names_lit,
+            get_arms,
+            set_arms,
+            fields,
+            defaults,
+            ..
+        } = self;
+        quote! {
+            #params_doc
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #[allow(non_snake_case)]
+            pub struct Params { #(#fields)* }
+
+            impl Default for Params {
+                fn default() -> Self { Self { #(#defaults)* } }
+            }
+
+            impl ::stickslip::ParamSet for Params {
+                const NAMES: &'static [&'static str] = &[#(#names_lit),*];
+                fn get(&self, index: usize) -> f64 {
+                    match index { #(#get_arms)* _ => f64::NAN }
+                }
+                fn set(&mut self, index: usize, value: f64) {
+                    match index { #(#set_arms)* _ => {} }
+                }
+                #check_fn
+            }
+        }
+    }
+}
+
 fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
     let fields = free
         .iter()
@@ -377,15 +412,8 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let mut inst = lower_instance(model, &free, diags);
     let nodes = crate::pieces::lower_law(&mut inst, law, diags);
     let pnames: Vec<String> = free.iter().map(|&i| model.params[i].name.clone()).collect();
-    let ParamsCode {
-        names_lit,
-        get_arms,
-        set_arms,
-        fields,
-        defaults,
-        param_infos,
-        free_idx,
-    } = params_code(model, &free);
+    let code = params_code(model, &free);
+    let (param_infos, free_idx) = (&code.param_infos, &code.free_idx);
     let g = &mut inst.graph;
     let slope = g
         .diff(nodes.kinetic, crate::instance::LAW_V)
@@ -443,24 +471,8 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
         model.name
     ));
     let type_doc = doc(&lines);
-    quote! {
-        /// Run-time parameters of the smooth model.
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        #[allow(non_snake_case)]
-        pub struct Params { #(#fields)* }
-
-        impl Default for Params {
-            fn default() -> Self { Self { #(#defaults)* } }
-        }
-
-        impl ::stickslip::ParamSet for Params {
-            const NAMES: &'static [&'static str] = &[#(#names_lit),*];
-            fn get(&self, index: usize) -> f64 {
-                match index { #(#get_arms)* _ => f64::NAN }
-            }
-            fn set(&mut self, index: usize, value: f64) {
-                match index { #(#set_arms)* _ => {} }
-            }
+    let params_doc = doc1("Run-time parameters of the smooth model.");
+    let smooth_check = quote! {
             fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
                 let p = self;
                 ::stickslip::param::check_values(self, &INFO)?;
@@ -473,7 +485,10 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
                     stick: Some((#cst, #cfa, #cfb)),
                 })
             }
-        }
+    };
+    let params_items = code.items(&params_doc, &smooth_check);
+    quote! {
+        #params_items
 
         /// Static description (no boundaries: the law is smooth; see the `pieces` scenes).
         pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
@@ -570,15 +585,8 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let type_ident = format_ident!("{}", type_name);
 
     // --- Params ---------------------------------------------------------
-    let ParamsCode {
-        names_lit,
-        get_arms,
-        set_arms,
-        fields,
-        defaults,
-        param_infos,
-        free_idx,
-    } = params_code(model, &free);
+    let code = params_code(model, &free);
+    let (param_infos, free_idx) = (&code.param_infos, &code.free_idx);
 
     // --- Conditions checked at run time ---------------------------------
     let vel: Vec<Id> = inst.boundary_velocity.clone();
@@ -979,26 +987,9 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
             doc(&lines)
         };
     let params_doc = doc1(&format!("Run-time parameters of `{display_name}`."));
+    let params_items = code.items(&params_doc, &check_fn);
     quote! {
-        #params_doc
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        #[allow(non_snake_case)]
-        pub struct Params { #(#fields)* }
-
-        impl Default for Params {
-            fn default() -> Self { Self { #(#defaults)* } }
-        }
-
-        impl ::stickslip::ParamSet for Params {
-            const NAMES: &'static [&'static str] = &[#(#names_lit),*];
-            fn get(&self, index: usize) -> f64 {
-                match index { #(#get_arms)* _ => f64::NAN }
-            }
-            fn set(&mut self, index: usize, value: f64) {
-                match index { #(#set_arms)* _ => {} }
-            }
-                #check_fn
-        }
+        #params_items
 
         #info_doc
         pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
