@@ -443,7 +443,7 @@ impl<M: Model> Simulator<M> {
             Location::Stick => {
                 let (k, bound_s) = self.stick.expect("stuck only on a stick boundary");
                 let vs = self.velocities[k];
-                let (a0, d, c) = (self.osc.amplitude, self.osc.damping, self.osc.stiffness);
+                let (a0, c) = (self.osc.amplitude, self.osc.stiffness);
                 let probe = |phi: f64| {
                     let x = seg.x + vs * (phi - seg.phase) / w;
                     let fnf = M::stick_forces(&self.p, x, phi)
@@ -455,7 +455,6 @@ impl<M: Model> Simulator<M> {
                         ddh: -a0 * phi.cos(),
                     }
                 };
-                let _ = d;
                 let bound = |_phi: f64, _delta: f64, _p: &Probe| a0.abs();
                 let root = first_root(
                     &probe,

@@ -3,7 +3,9 @@
 //! guess perturbed by 1e-2, and by simulation from rest; switching points
 //! within 1e-9, eigenvalues within 1e-8. And the NM case.
 
-use serde_json::Value;
+mod common;
+
+use common::reference::{references, Reference};
 use stickslip::attractor::{self, Attractor, AttractorOptions};
 use stickslip::models::paper::{Paper, Params};
 use stickslip::motion::{solve, Motion};
@@ -11,49 +13,6 @@ use stickslip::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::simulate::{SimOptions, Simulator};
 use stickslip::structure::Structure;
 use stickslip::Model;
-
-struct Reference {
-    structure: String,
-    w: f64,
-    q0: f64,
-    periods: u32,
-    points: Vec<SwitchingPoint>,
-    eigenvalues: Vec<[f64; 2]>,
-}
-
-fn references() -> Vec<Reference> {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/orbits.json");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let v: Value = serde_json::from_str(&text).expect("valid JSON");
-    let f = |v: &Value| v.as_f64().expect("number");
-    v["orbits"]
-        .as_array()
-        .expect("orbits")
-        .iter()
-        .map(|o| Reference {
-            structure: o["structure"].as_str().expect("structure").to_string(),
-            w: f(&o["W"]),
-            q0: f(&o["Q0"]),
-            periods: f(&o["N_periods"]) as u32,
-            points: o["switching_points"]
-                .as_array()
-                .expect("points")
-                .iter()
-                .map(|p| SwitchingPoint {
-                    phase: f(&p["Wt"]),
-                    x: f(&p["x"]),
-                })
-                .collect(),
-            eigenvalues: o["eigenvalues"]
-                .as_array()
-                .expect("ev")
-                .iter()
-                .map(|e| [f(&e[0]), f(&e[1])])
-                .collect(),
-        })
-        .collect()
-}
 
 fn assert_matches(r: &Reference, motion: &Motion, how: &str) {
     let info = Paper::INFO;

@@ -9,7 +9,9 @@
 //! corresponding switching point within 1e-10 in phase and in x; (c) the
 //! return point is point 0 shifted by `2πN`, within 1e-10.
 
-use serde_json::Value;
+mod common;
+
+use common::reference::references;
 use stickslip::attractor::mapping_between;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::motion::solve;
@@ -20,49 +22,6 @@ use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const TOL: f64 = 1e-10;
-
-struct Reference {
-    structure: String,
-    w: f64,
-    q0: f64,
-    periods: u32,
-    mappings: Vec<String>,
-    points: Vec<SwitchingPoint>,
-}
-
-fn references() -> Vec<Reference> {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/reference/orbits.json");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let v: Value = serde_json::from_str(&text).expect("valid JSON");
-    let f = |v: &Value| v.as_f64().expect("number");
-    v["orbits"]
-        .as_array()
-        .expect("orbits")
-        .iter()
-        .map(|o| Reference {
-            structure: o["structure"].as_str().expect("structure").to_string(),
-            w: f(&o["W"]),
-            q0: f(&o["Q0"]),
-            periods: f(&o["N_periods"]) as u32,
-            mappings: o["mappings_in_application_order"]
-                .as_array()
-                .expect("mappings")
-                .iter()
-                .map(|m| m.as_str().expect("name").to_string())
-                .collect(),
-            points: o["switching_points"]
-                .as_array()
-                .expect("points")
-                .iter()
-                .map(|p| SwitchingPoint {
-                    phase: f(&p["Wt"]),
-                    x: f(&p["x"]),
-                })
-                .collect(),
-        })
-        .collect()
-}
 
 /// The segment that starts mapping `idx` at `pt` (built directly: on a
 /// boundary, `Simulator::start` would pick the side from the vector field).

@@ -418,14 +418,12 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let slope = g
         .diff(nodes.kinetic, crate::instance::LAW_V)
         .unwrap_or_else(|_| g.constant(f64::NAN));
-    let v = g.var(crate::instance::LAW_V);
     let eps = g.constant(1e-12);
     let range_eps = g.mul(nodes.range, eps);
     let above = g.add(nodes.belt, range_eps);
     let below = g.sub(nodes.belt, range_eps);
     let f_above = g.substitute(nodes.kinetic, crate::instance::LAW_V, above);
     let f_below = g.substitute(nodes.kinetic, crate::instance::LAW_V, below);
-    let _ = v;
     let (kstmts, kouts) = straight_line(
         &inst.graph,
         &pnames,
@@ -442,8 +440,10 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     ];
     let (ostmts, oouts) = straight_line(&inst.graph, &pnames, &[], &osc);
     let (om, od, oc, oa, ow) = (&oouts[0], &oouts[1], &oouts[2], &oouts[3], &oouts[4]);
-    let (bstmts, bouts) = straight_line(&inst.graph, &pnames, &[], &[nodes.belt, nodes.stick]);
-    let (belt, stick) = (&bouts[0], &bouts[1]);
+    // Each function computes only what it returns.
+    let (bstmts, bouts) = straight_line(&inst.graph, &pnames, &[], &[nodes.belt]);
+    let (sstmts, souts) = straight_line(&inst.graph, &pnames, &[], &[nodes.stick]);
+    let (belt, stick) = (&bouts[0], &souts[0]);
     let cond = [
         inst.mass,
         inst.stiffness,
@@ -529,13 +529,11 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
             #[inline]
             fn belt(p: &Params) -> f64 {
                 #bstmts
-                let _ = #stick;
                 #belt
             }
             #[inline]
             fn static_bound(p: &Params) -> f64 {
-                #bstmts
-                let _ = #belt;
+                #sstmts
                 #stick
             }
             /// The law and its exact derivative in `v`.

@@ -39,7 +39,7 @@ pub use emit::Options;
 /// Lints allowed on a generated module: parameter names keep the model's
 /// spelling (`V1`, `Q0`), folded constants keep every digit, and field or
 /// match shapes follow the model rather than style.
-pub const MODULE_LINTS: &str = "non_snake_case, clippy::excessive_precision, clippy::approx_constant, clippy::redundant_field_names, clippy::single_match";
+pub const MODULE_LINTS: &str = "non_snake_case, clippy::excessive_precision, clippy::approx_constant, clippy::redundant_field_names, clippy::single_match, clippy::let_and_return";
 pub use model::Model;
 
 /// Parse and check a model from tokens.

@@ -2,6 +2,8 @@
 //! that put a chosen domain in a chosen damping regime.
 #![allow(dead_code)]
 
+pub mod reference;
+
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use stickslip::models::paper::{Paper, Params};
