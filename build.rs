@@ -38,9 +38,11 @@ fn main() {
             "models/{}",
             file.file_name().expect("file").to_string_lossy()
         );
-        match stickslip_codegen::generate_file(file, &origin) {
+        // The one entry point of build.rs, `model!(file = ...)` and
+        // `stickslip check`: the same file gets the same report from all three.
+        match stickslip_codegen::check_file(file, &origin) {
             Err(report) => {
-                eprint!("{report}");
+                eprint!("{}", report.render());
                 failed = true;
             }
             Ok(generated) => {

@@ -28,6 +28,17 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Check model files as the build does (parse, check, generate), without
+    /// compiling anything: each error as `error:`, `--> FILE:LINE:COL`, the
+    /// source line and a caret, on stderr. Exit status 1 on any error.
+    Check {
+        /// Model files (`models/paper.ssm`).
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Print the diagnostics as JSON on stdout (for editors).
+        #[arg(long)]
+        json: bool,
+    },
     /// List the compiled-in models and their scenes.
     Models,
     /// Print a model's domains, boundaries and generated mappings.
@@ -604,6 +615,11 @@ fn run(cli: Cli) -> Result<Outcome, String> {
         }
     }
     match cli.command {
+        // Its own exit status and output: see `check`.
+        Command::Check { files, json } => Err(format!(
+            "internal: `check` {} file(s) (json: {json}) reached the wrong driver",
+            files.len()
+        )),
         Command::Models => {
             let mut out = String::new();
             for info in models::ALL {
@@ -846,8 +862,96 @@ fn unknown_model(model: &str) -> String {
     format!("unknown model `{model}`; compiled-in: {}", names.join(", "))
 }
 
+/// `stickslip check`: every file through the generator's one entry point
+/// (that of `build.rs` and `model!(file = ...)`), all errors reported.
+fn check(files: &[PathBuf], json: bool) -> ExitCode {
+    let mut errors = 0;
+    let mut reports = Vec::new();
+    for file in files {
+        let origin = file.display().to_string();
+        let result = stickslip_codegen::check_file(file, &origin);
+        match result {
+            Ok(generated) => reports.push(serde_json::json!({
+                "file": origin,
+                "ok": true,
+                "model": generated.name,
+                "diagnostics": [],
+            })),
+            Err(report) => {
+                errors += report.errors.len();
+                if !json {
+                    eprint!("{}", report.render());
+                }
+                let diagnostics: Vec<serde_json::Value> =
+                    report.errors.iter().map(diagnostic_json).collect();
+                reports.push(serde_json::json!({
+                    "file": origin,
+                    "ok": false,
+                    "model": null,
+                    "diagnostics": diagnostics,
+                }));
+            }
+        }
+    }
+    let n = files.len();
+    let summary = format!(
+        "checked {n} file{}: {errors} error{}",
+        if n == 1 { "" } else { "s" },
+        if errors == 1 { "" } else { "s" }
+    );
+    if json {
+        let doc = serde_json::json!({
+            "checked": n,
+            "errors": errors,
+            "files": reports,
+        });
+        match serde_json::to_string_pretty(&doc) {
+            Ok(text) => println!("{text}"),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    } else {
+        eprintln!("{summary}");
+    }
+    if errors == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+/// One diagnostic for `check --json`: lines and columns 1-based, columns in
+/// characters, the end exclusive; `null` position for a file-wide error.
+fn diagnostic_json(e: &stickslip_codegen::Located) -> serde_json::Value {
+    let (line, column, end_line, end_column) = match e.position {
+        Some(p) => (
+            Some(p.line),
+            Some(p.column),
+            Some(p.end_line),
+            Some(p.end_column),
+        ),
+        None => (None, None, None, None),
+    };
+    serde_json::json!({
+        "severity": e.severity.as_str(),
+        "message": e.message,
+        "file": e.file,
+        "line": line,
+        "column": column,
+        "end_line": end_line,
+        "end_column": end_column,
+        "rendered": e.rendered,
+    })
+}
+
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
+    let cli = Cli::parse();
+    if let Command::Check { files, json } = &cli.command {
+        return check(files, *json);
+    }
+    match run(cli) {
         Ok(outcome) => {
             let out = outcome.stdout;
             print!("{out}");

@@ -68,50 +68,12 @@ impl Diagnostics {
     }
 
     /// Human-readable report for a model read from `file`: each error as
-    /// `error: message`, then `--> file:line:col`, the source line and a caret.
-    /// Needs spans with locations (proc-macro2's fallback with `span-locations`).
+    /// rustc shows its own (`error: message`, then `--> file:line:col`, the
+    /// source line and a caret), then `N errors in FILE`. Needs spans with
+    /// locations (proc-macro2's fallback with `span-locations`). The
+    /// structured form is [`Report`](crate::report::Report).
     pub fn render(&self, file: &str, source: &str) -> String {
-        let lines: Vec<&str> = source.lines().collect();
-        let mut out = String::new();
-        for d in &self.list {
-            let start = d.span.start();
-            let (line, col) = (start.line, start.column + 1);
-            out.push_str(&format!(
-                "error: {}\n  --> {}:{}:{}\n",
-                d.message, file, line, col
-            ));
-            if let Some(text) = line.checked_sub(1).and_then(|i| lines.get(i)) {
-                let width = line.to_string().len();
-                let end = d.span.end();
-                let len = if end.line == start.line && end.column > start.column {
-                    end.column - start.column
-                } else {
-                    1
-                };
-                let pad: String = text
-                    .chars()
-                    .take(start.column)
-                    .map(|c| if c == '\t' { '\t' } else { ' ' })
-                    .collect();
-                out.push_str(&format!(
-                    "{:w$} |\n{} | {}\n{:w$} | {}{}\n",
-                    "",
-                    line,
-                    text,
-                    "",
-                    pad,
-                    "^".repeat(len),
-                    w = width
-                ));
-            }
-        }
-        out.push_str(&format!(
-            "{} error{} in {}\n",
-            self.list.len(),
-            if self.list.len() == 1 { "" } else { "s" },
-            file
-        ));
-        out
+        crate::report::Report::from_diagnostics(self, file, source).render()
     }
 
     /// Like [`render`](Self::render), but one line per error: `file:line:col: message`.

@@ -27,6 +27,7 @@ pub mod model;
 #[allow(missing_docs)]
 pub mod parse;
 pub mod pieces;
+pub mod report;
 
 use std::path::Path;
 use std::str::FromStr;
@@ -35,6 +36,7 @@ use proc_macro2::TokenStream;
 
 pub use diagnostic::{Diagnostic, Diagnostics};
 pub use emit::Options;
+pub use report::{check_file, check_source, Located, Position, Report, Severity};
 
 /// Lints allowed on a generated module: parameter names keep the model's
 /// spelling (`V1`, `Q0`), folded constants keep every digit, and field or
@@ -129,21 +131,13 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
 }
 
 /// Read, check and generate a model file. On failure the error is the
-/// rendered report: `file:line:col`, the source line and a caret per error.
+/// rendered report: `file:line:col`, the source line and a caret per error
+/// ([`check_file`], rendered).
 pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
-    let source = std::fs::read_to_string(path)
-        .map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
-    generate_source(&source, origin)
+    check_file(path, origin).map_err(|r| r.render())
 }
 
 /// Like [`generate_file`], from source text; `origin` names the file in messages.
 pub fn generate_source(source: &str, origin: &str) -> Result<GeneratedFile, String> {
-    let tokens = tokenize(source).map_err(|d| d.render(origin, source))?;
-    generate(
-        tokens,
-        &Options {
-            origin: origin.to_string(),
-        },
-    )
-    .map_err(|d| d.render(origin, source))
+    check_source(source, origin).map_err(|r| r.render())
 }
