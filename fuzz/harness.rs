@@ -23,36 +23,74 @@ use stickslip::ParamSet;
 
 const TAU: f64 = std::f64::consts::TAU;
 
-/// The bytes as a model file (invalid UTF-8 replaced): the generator must
-/// return code, or a report whose every error has a `fuzz.ssm:LINE:COL` with
-/// a real line.
+/// The bytes as a model file (invalid UTF-8 replaced): see [`model_text`].
 pub fn model_source(data: &[u8]) {
-    let source = String::from_utf8_lossy(data);
-    match stickslip_codegen::generate_source(&source, "fuzz.ssm") {
-        Ok(generated) => assert!(!generated.code.is_empty()),
-        Err(report) => {
-            assert!(
-                report.ends_with(" in fuzz.ssm\n"),
-                "no count line:\n{report}"
-            );
-            let mut errors = 0;
-            let lines: Vec<&str> = report.lines().collect();
-            for (i, line) in lines.iter().enumerate() {
-                if line.starts_with("error: ") {
-                    errors += 1;
-                    let location = lines
-                        .get(i + 1)
-                        .and_then(|l| l.strip_prefix("  --> fuzz.ssm:"))
-                        .unwrap_or_else(|| panic!("unlocated error `{line}` in:\n{report}"));
-                    let line_no: usize = location
-                        .split(':')
-                        .next()
-                        .and_then(|n| n.parse().ok())
-                        .unwrap_or(0);
-                    assert!(line_no >= 1, "error without a line: `{line}` in:\n{report}");
-                }
+    model_text(&String::from_utf8_lossy(data));
+}
+
+/// A model file's text through `check_source`, the entry point of
+/// `stickslip check`, `build.rs` and `model!(file = ...)`. The generator must
+/// return code that parses as a Rust file, or a report whose every error is
+/// located in `fuzz.ssm` (a line of the file, a column within it or just
+/// past its end) and rendered as rustc renders (`error: MESSAGE`,
+/// `--> fuzz.ssm:LINE:COL`, the source line, a caret).
+pub fn model_text(source: &str) {
+    match stickslip_codegen::check_source(source, "fuzz.ssm") {
+        Ok(generated) => {
+            assert!(!generated.code.is_empty());
+            if let Err(e) = syn::parse_file(&generated.code) {
+                panic!(
+                    "generated code does not parse ({e}):\n{}\nfrom:\n{source}",
+                    generated.code
+                );
             }
-            assert!(errors >= 1, "a report without an error:\n{report}");
+        }
+        Err(report) => {
+            let rendered = report.render();
+            assert!(
+                rendered.ends_with(" in fuzz.ssm\n"),
+                "no count line:\n{rendered}"
+            );
+            assert!(!report.errors.is_empty(), "a report without an error");
+            let lines: Vec<&str> = source.lines().collect();
+            for e in &report.errors {
+                assert!(
+                    !e.message.starts_with("internal error"),
+                    "the generator panicked: {}\non:\n{source}",
+                    e.message
+                );
+                let at = e
+                    .position
+                    .unwrap_or_else(|| panic!("unlocated error `{}` in:\n{rendered}", e.message));
+                assert!(
+                    at.line >= 1 && at.line <= lines.len() + 1,
+                    "error on line {} of a {}-line file: `{}`",
+                    at.line,
+                    lines.len(),
+                    e.message
+                );
+                let width = lines.get(at.line - 1).map_or(0, |l| l.chars().count());
+                assert!(
+                    at.column >= 1 && at.column <= width + 1,
+                    "column {} on a line of {width} characters: `{}`",
+                    at.column,
+                    e.message
+                );
+                let arrow = format!(
+                    "{:w$}--> fuzz.ssm:{}:{}\n",
+                    "",
+                    at.line,
+                    at.column,
+                    w = at.line.to_string().len()
+                );
+                let head = format!("error: {}\n{arrow}", e.message);
+                assert!(
+                    e.rendered.starts_with(&head),
+                    "not rendered as rustc does:\n{}",
+                    e.rendered
+                );
+                assert!(rendered.contains(&e.rendered));
+            }
         }
     }
 }
