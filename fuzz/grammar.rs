@@ -832,7 +832,7 @@ impl Gen<'_> {
             return;
         }
         let name = format!("scene{}", self.r.byte());
-        if self.out.iter().any(|t| *t == name) {
+        if self.out.contains(&name) {
             return;
         }
         self.doc();
