@@ -110,7 +110,7 @@ fn errors(source: &str) -> Vec<(String, String)> {
         if let Some(message) = line.strip_prefix("error: ") {
             let location = lines
                 .get(i + 1)
-                .and_then(|l| l.strip_prefix("  --> "))
+                .and_then(|l| l.trim_start().strip_prefix("--> "))
                 .unwrap_or_else(|| panic!("no location after `{line}` in:\n{report}"));
             out.push((message.to_string(), location.to_string()));
         }
@@ -1173,7 +1173,7 @@ fn no_panic_on_damaged_models() {
             let src = l.join("\n");
             if let Err(report) = generate(&src) {
                 assert!(
-                    report.contains("  --> test.ssm:") && report.ends_with(" in test.ssm\n"),
+                    report.contains("--> test.ssm:") && report.ends_with(" in test.ssm\n"),
                     "malformed report for line {} variant {variant}:\n{report}",
                     i + 1
                 );
