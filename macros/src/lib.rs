@@ -88,7 +88,12 @@ fn expand(input: TokenStream, as_source: bool) -> Tokens {
             return syn::Error::new(Span::call_site(), format!("internal: {e}")).to_compile_error()
         }
     };
-    let name = format_ident!("{}", generated.name);
+    let name: Tokens = match generated.module.parse() {
+        Ok(t) => t,
+        Err(e) => {
+            return syn::Error::new(Span::call_site(), format!("internal: {e}")).to_compile_error()
+        }
+    };
     // Make the compiler rebuild when the model file changes.
     let track = tracked.map(|p| {
         quote!(
