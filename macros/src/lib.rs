@@ -10,7 +10,7 @@
 
 use proc_macro::TokenStream;
 use proc_macro2::{Span, TokenStream as Tokens};
-use quote::{format_ident, quote};
+use quote::quote;
 use stickslip_codegen::{GeneratedFile, Options};
 use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
