@@ -80,7 +80,9 @@ pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile,
 pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
     TokenStream::from_str(source).map_err(|e| {
         let mut d = Diagnostics::new();
-        d.error(e.span(), format!("cannot tokenize the model: {e}"));
+        let message = names::tokenize_hint(source, e.span())
+            .unwrap_or_else(|| format!("cannot tokenize the model: {e}"));
+        d.error(e.span(), message);
         d
     })
 }

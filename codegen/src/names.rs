@@ -171,6 +171,25 @@ fn canonical_ident(i: Ident) -> Ident {
     }
 }
 
+/// A message for a tokenizer error at `span` that is a raw identifier which
+/// cannot be one (`r#self`, `r#Self`, `r#super`, `r#crate`, `r#_`).
+pub fn tokenize_hint(source: &str, span: Span) -> Option<String> {
+    let start = span.start();
+    let line = source.lines().nth(start.line.checked_sub(1)?)?;
+    let rest: String = line.chars().skip(start.column).collect();
+    let word: String = rest
+        .strip_prefix("r#")?
+        .chars()
+        .take_while(|&c| c == '_' || unicode_ident::is_xid_continue(c))
+        .collect();
+    NOT_RAW.contains(&word.as_str()).then(|| {
+        format!(
+            "`r#{word}` is not an identifier: `self`, `Self`, `super`, `crate` and `_` cannot be written raw, \
+             nor name anything in a model"
+        )
+    })
+}
+
 fn at(span: Span) -> String {
     let l = span.start();
     format!("line {}, column {}", l.line, l.column + 1)
