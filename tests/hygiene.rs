@@ -175,10 +175,7 @@ fn same_numbers<A: Model, B: Model>() {
         assert_eq!(bits(A::oscillator(&pa)), bits(B::oscillator(&pb)));
         assert_eq!(bits(A::static_bound(&pa)), bits(B::static_bound(&pb)));
         for j in 0..=ia.domains.len() {
-            assert_eq!(
-                bits(A::coefficients(&pa, j)),
-                bits(B::coefficients(&pb, j))
-            );
+            assert_eq!(bits(A::coefficients(&pa, j)), bits(B::coefficients(&pb, j)));
         }
         for k in 0..=ia.boundaries.len() {
             assert_eq!(

@@ -268,7 +268,9 @@ fn param_ident(name: &str) -> Ident {
 }
 
 fn param_idents(model: &Model, free: &[usize]) -> Vec<Ident> {
-    free.iter().map(|&i| param_ident(&model.params[i].name)).collect()
+    free.iter()
+        .map(|&i| param_ident(&model.params[i].name))
+        .collect()
 }
 
 /// The type of a model (`prefix = "Model"`) or scene (`"Scene"`).
@@ -966,22 +968,27 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 
     let nan2 = quote!([f64::NAN, f64::NAN]);
     let info_doc = doc1(&format!("Static description of `{display_name}`."));
-    let type_doc =
-        if let Some(s) = scene {
-            let sc = &model.scenes[s];
-            let mut lines = sc.docs.clone();
-            lines.push(format!(
+    let type_doc = if let Some(s) = scene {
+        let sc = &model.scenes[s];
+        let mut lines = sc.docs.clone();
+        lines.push(format!(
             "Scene `{}` of model `{}`: free parameters {}; the others are folded into constants.",
             names::bare(&sc.name),
             names::bare(&model.name),
-            free.iter().map(|&i| format!("`{}`", names::bare(&model.params[i].name))).collect::<Vec<_>>().join(", ")
+            free.iter()
+                .map(|&i| format!("`{}`", names::bare(&model.params[i].name)))
+                .collect::<Vec<_>>()
+                .join(", ")
         ));
-            doc(&lines)
-        } else {
-            let mut lines = model.docs.clone();
-            lines.push(format!("Model `{}`, every parameter free.", names::bare(&model.name)));
-            doc(&lines)
-        };
+        doc(&lines)
+    } else {
+        let mut lines = model.docs.clone();
+        lines.push(format!(
+            "Model `{}`, every parameter free.",
+            names::bare(&model.name)
+        ));
+        doc(&lines)
+    };
     let params_doc = doc1(&format!("Run-time parameters of `{display_name}`."));
     let params_items = code.items(&params_doc, &check_fn);
     quote! {

@@ -36,9 +36,9 @@ use crate::parse::{Item, ModelAst};
 const KEYWORDS: &[&str] = &[
     "_", "abstract", "as", "async", "await", "become", "box", "break", "const", "continue",
     "crate", "do", "dyn", "else", "enum", "extern", "false", "final", "fn", "for", "gen", "if",
-    "impl", "in", "let", "loop", "macro", "match", "mod", "move", "mut", "override", "priv",
-    "pub", "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "try",
-    "type", "typeof", "unsafe", "unsized", "use", "virtual", "where", "while", "yield",
+    "impl", "in", "let", "loop", "macro", "match", "mod", "move", "mut", "override", "priv", "pub",
+    "ref", "return", "self", "Self", "static", "struct", "super", "trait", "true", "try", "type",
+    "typeof", "unsafe", "unsized", "use", "virtual", "where", "while", "yield",
 ];
 
 /// Keywords that cannot be raw identifiers either.
@@ -122,7 +122,9 @@ fn camel(name: &str) -> String {
 /// name of another item of its module (`params` → `SceneParams`).
 pub fn type_name(name: &str, prefix: &str) -> String {
     let c = camel(name);
-    if is_ident_chars(&c) && !KEYWORDS.contains(&c.as_str()) && !RESERVED_TYPES.contains(&c.as_str())
+    if is_ident_chars(&c)
+        && !KEYWORDS.contains(&c.as_str())
+        && !RESERVED_TYPES.contains(&c.as_str())
     {
         c
     } else {
@@ -217,7 +219,10 @@ pub fn check(ast: &ModelAst, diags: &mut Diagnostics) {
         let clash = if shown == "Params" {
             Some("the parameter struct `Params`".to_string())
         } else if shown == model_type {
-            Some(format!("the type `{model_type}` of model `{}`", bare(&model)))
+            Some(format!(
+                "the type `{model_type}` of model `{}`",
+                bare(&model)
+            ))
         } else if PRIMITIVES.contains(&shown) {
             Some(format!("the primitive type `{shown}`"))
         } else {

@@ -56,24 +56,46 @@ fn accepts(source: &str) -> String {
     g.code
 }
 
-const SCENE_W: &str = "    scene sweep { free: W; }\n";
-
 #[test]
 fn a_scene_defined_twice() {
-    let src = model("bad", "", "    scene sweep { free: W; }\n    scene sweep { free: W, mu; }\n");
-    rejects(&src, "scene `sweep` is defined twice (first at line 14, column 11)", "15:11");
+    let src = model(
+        "bad",
+        "",
+        "    scene sweep { free: W; }\n    scene sweep { free: W, mu; }\n",
+    );
+    rejects(
+        &src,
+        "scene `sweep` is defined twice (first at line 14, column 11)",
+        "15:11",
+    );
 }
 
 #[test]
 fn scenes_equal_after_nfc() {
-    let src = model("bad", "", "    scene ét { free: W; }\n    scene ét { free: mu; }\n");
-    rejects(&src, "scene `ét` is defined twice (first at line 14, column 11)", "15:11");
+    let src = model(
+        "bad",
+        "",
+        "    scene ét { free: W; }\n    scene ét { free: mu; }\n",
+    );
+    rejects(
+        &src,
+        "scene `ét` is defined twice (first at line 14, column 11)",
+        "15:11",
+    );
 }
 
 #[test]
 fn scenes_equal_after_raw_removal() {
-    let src = model("bad", "", "    scene r#sweep { free: W; }\n    scene sweep { free: mu; }\n");
-    rejects(&src, "scene `sweep` is defined twice (first at line 14, column 11)", "15:11");
+    let src = model(
+        "bad",
+        "",
+        "    scene r#sweep { free: W; }\n    scene sweep { free: mu; }\n",
+    );
+    rejects(
+        &src,
+        "scene `sweep` is defined twice (first at line 14, column 11)",
+        "15:11",
+    );
 }
 
 #[test]
@@ -111,19 +133,31 @@ fn scenes_named_like_primitive_types() {
 #[test]
 fn parameters_equal_after_nfc() {
     let src = model("bad", "    param é = 0.1;\n    param é = 0.2;\n", "");
-    rejects(&src, "`é` is defined twice (first at line 8, column 11)", "9:11");
+    rejects(
+        &src,
+        "`é` is defined twice (first at line 8, column 11)",
+        "9:11",
+    );
 }
 
 #[test]
 fn a_let_equal_to_a_parameter_after_nfc() {
     let src = model("bad", "    param é1 = 0.1;\n    let é1 = 2.0 * mu;\n", "");
-    rejects(&src, "`é1` is defined twice (first at line 8, column 11)", "9:9");
+    rejects(
+        &src,
+        "`é1` is defined twice (first at line 8, column 11)",
+        "9:9",
+    );
 }
 
 #[test]
 fn parameters_equal_after_raw_removal() {
     let src = model("bad", "    param r#mu = 0.1;\n", "");
-    rejects(&src, "`mu` is defined twice (first at line 6, column 11)", "8:11");
+    rejects(
+        &src,
+        "`mu` is defined twice (first at line 6, column 11)",
+        "8:11",
+    );
 }
 
 #[test]
@@ -136,11 +170,23 @@ fn a_raw_v_is_the_velocity() {
 fn keywords_that_cannot_be_names() {
     for kw in ["self", "Self", "super", "crate", "_"] {
         let src = model("bad", &format!("    param {kw} = 0.1;\n"), "");
-        rejects(&src, &format!("expected identifier, found keyword `{kw}`"), "8:11");
+        rejects(
+            &src,
+            &format!("expected identifier, found keyword `{kw}`"),
+            "8:11",
+        );
         let src = model("bad", "", &format!("    scene {kw} {{ free: W; }}\n"));
-        rejects(&src, &format!("expected identifier, found keyword `{kw}`"), "14:11");
+        rejects(
+            &src,
+            &format!("expected identifier, found keyword `{kw}`"),
+            "14:11",
+        );
         let src = model(kw, "", "");
-        rejects(&src, &format!("expected identifier, found keyword `{kw}`"), "1:7");
+        rejects(
+            &src,
+            &format!("expected identifier, found keyword `{kw}`"),
+            "1:7",
+        );
     }
 }
 
@@ -167,7 +213,7 @@ fn hostile_names_that_are_accepted() {
     for item in [
         "pub r#fn: f64",
         "pub r#gen: f64",
-        "p.p",
+        "pub p: f64",
         "pub mod _1",
         "pub struct Scene1;",
         "pub mod __",
@@ -183,6 +229,7 @@ fn hostile_names_that_are_accepted() {
         assert!(code.contains(item), "{item} missing");
     }
     // A name used in another normal form than it was declared in is the same name.
-    let src = model("nfc", "    param é = 0.1;\n", "    scene s { free: é; }\n").replace("frequency: W", "frequency: W + 0.0 * é");
+    let src = model("nfc", "    param é = 0.1;\n", "    scene s { free: é; }\n")
+        .replace("frequency: W", "frequency: W + 0.0 * é");
     accepts(&src);
 }
