@@ -17,6 +17,7 @@ use crate::equations;
 use crate::expr::{children, Graph, Hom, Id, Node};
 use crate::instance::lower_instance;
 use crate::model::{MappingKind, Model};
+use crate::names;
 use crate::parse::BoundOp;
 
 /// Options of one generation run.
@@ -37,7 +38,7 @@ enum Prec {
 
 struct Writer<'g> {
     g: &'g Graph,
-    params: &'g [String],
+    params: &'g [Ident],
     vars: HashMap<u32, Ident>,
     bound: HashMap<Id, Ident>,
 }
@@ -76,8 +77,10 @@ impl Writer<'_> {
         match g.node(id) {
             Node::Const(bits) => literal(f64::from_bits(bits)),
             Node::Param(k) => {
-                let name = format_ident!("{}", self.params[k as usize]);
-                (quote!(#name), Prec::Atom)
+                // Parameters are only ever read as fields of `p`: no local of
+                // the generated code can shadow them, nor they a local.
+                let name = &self.params[k as usize];
+                (quote!(p.#name), Prec::Atom)
             }
             Node::Var(k) => {
                 let name = &self.vars[&k];
@@ -162,7 +165,7 @@ impl Writer<'_> {
 /// expression per output.
 fn straight_line(
     g: &Graph,
-    params: &[String],
+    params: &[Ident],
     vars: &[(u32, &str)],
     outputs: &[Id],
 ) -> (TokenStream, Vec<TokenStream>) {
@@ -193,22 +196,12 @@ fn straight_line(
         bound: HashMap::new(),
     };
     let mut stmts = TokenStream::new();
-    // Parameters read once, by name.
-    let mut used_params: Vec<u32> = (0..n)
+    let reads_params = (0..n)
         .filter(|&i| reach[i])
-        .filter_map(|i| match g.node(Id(i as u32)) {
-            Node::Param(k) => Some(k),
-            _ => None,
-        })
-        .collect();
-    used_params.sort_unstable();
-    if used_params.is_empty() {
+        .any(|i| matches!(g.node(Id(i as u32)), Node::Param(_)));
+    if !reads_params {
         // Every parameter this function reads was folded at build time.
         stmts.extend(quote!(let _ = p;));
-    }
-    for k in used_params {
-        let name = format_ident!("{}", params[k as usize]);
-        stmts.extend(quote!(let #name = p.#name;));
     }
     let mut homs: BTreeMap<(Id, Id, Id), (Ident, Ident)> = BTreeMap::new();
     let mut counter = 0usize;
@@ -267,18 +260,22 @@ fn doc1(s: &str) -> TokenStream {
     quote!(#[doc = #s])
 }
 
-/// `sweep_w` → `SweepW`.
-pub fn camel(name: &str) -> String {
-    name.split('_')
-        .filter(|s| !s.is_empty())
-        .map(|s| {
-            let mut c = s.chars();
-            match c.next() {
-                Some(f) => f.to_uppercase().collect::<String>() + c.as_str(),
-                None => String::new(),
-            }
-        })
+/// A parameter or scene name as a Rust identifier (`r#fn` for `fn`). Every
+/// name was checked by [`emit`] first; a name without a spelling (never
+/// produced by the parser) becomes one that cannot clash with anything.
+fn param_ident(name: &str) -> Ident {
+    names::ident(name).unwrap_or_else(|| Ident::new("__stickslip_unnamed", Span::call_site()))
+}
+
+fn param_idents(model: &Model, free: &[usize]) -> Vec<Ident> {
+    free.iter()
+        .map(|&i| param_ident(&model.params[i].name))
         .collect()
+}
+
+/// The type of a model (`prefix = "Model"`) or scene (`"Scene"`).
+fn type_ident(name: &str, prefix: &str) -> Ident {
+    param_ident(&names::type_name(name, prefix))
 }
 
 fn bound_tokens(op: BoundOp) -> TokenStream {
@@ -318,7 +315,7 @@ impl ParamsCode {
             #[allow(non_snake_case)]
             pub struct Params { #(#fields)* }
 
-            impl Default for Params {
+            impl ::core::default::Default for Params {
                 fn default() -> Self { Self { #(#defaults)* } }
             }
 
@@ -341,7 +338,7 @@ fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
         .iter()
         .map(|&i| {
             let p = &model.params[i];
-            let name = format_ident!("{}", p.name);
+            let name = param_ident(&p.name);
             let mut lines = p.docs.clone();
             lines.push(format!("Default: `{}`.", p.default));
             let d = doc(&lines);
@@ -352,17 +349,20 @@ fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
         .iter()
         .map(|&i| {
             let p = &model.params[i];
-            let name = format_ident!("{}", p.name);
+            let name = param_ident(&p.name);
             let (v, _) = literal(p.default);
             quote!(#name: #v,)
         })
         .collect();
-    let names_lit = free.iter().map(|&i| model.params[i].name.clone()).collect();
+    let names_lit = free
+        .iter()
+        .map(|&i| names::bare(&model.params[i].name).to_string())
+        .collect();
     let get_arms = free
         .iter()
         .enumerate()
         .map(|(k, &i)| {
-            let name = format_ident!("{}", model.params[i].name);
+            let name = param_ident(&model.params[i].name);
             quote!(#k => self.#name,)
         })
         .collect();
@@ -370,7 +370,7 @@ fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
         .iter()
         .enumerate()
         .map(|(k, &i)| {
-            let name = format_ident!("{}", model.params[i].name);
+            let name = param_ident(&model.params[i].name);
             quote!(#k => self.#name = value,)
         })
         .collect();
@@ -379,7 +379,7 @@ fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
         .iter()
         .enumerate()
         .map(|(i, p)| {
-            let name = &p.name;
+            let name = names::bare(&p.name);
             let (def, _) = literal(p.default);
             let bounds = p.bounds.iter().map(|(op, b)| {
                 let op = bound_tokens(*op);
@@ -411,7 +411,7 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let free: Vec<usize> = (0..model.params.len()).collect();
     let mut inst = lower_instance(model, &free, diags);
     let nodes = crate::pieces::lower_law(&mut inst, law, diags);
-    let pnames: Vec<String> = free.iter().map(|&i| model.params[i].name.clone()).collect();
+    let pnames = param_idents(model, &free);
     let code = params_code(model, &free);
     let (param_infos, free_idx) = (&code.param_infos, &code.free_idx);
     let g = &mut inst.graph;
@@ -456,8 +456,8 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let (cm, cs, cw, cst, cfa, cfb) = (
         &couts[0], &couts[1], &couts[2], &couts[3], &couts[4], &couts[5],
     );
-    let name = &model.name;
-    let type_ident = format_ident!("{}", camel(&model.name));
+    let name = names::bare(&model.name);
+    let type_ident = type_ident(&model.name, "Model");
     let docs = model.docs.join("\n");
     let law_text = quote::ToTokens::to_token_stream(&law.kinetic).to_string();
     let range_val = {
@@ -551,14 +551,14 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let (free, mapping_filter, type_name, display_name): (
         Vec<usize>,
         Option<Vec<usize>>,
-        String,
+        Ident,
         String,
     ) = match scene {
         None => (
             (0..model.params.len()).collect(),
             None,
-            camel(&model.name),
-            model.name.clone(),
+            type_ident(&model.name, "Model"),
+            names::bare(&model.name).to_string(),
         ),
         Some(s) => {
             let sc = &model.scenes[s];
@@ -573,14 +573,14 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
             (
                 sc.free.clone(),
                 filter,
-                camel(&sc.name),
-                format!("{}::{}", model.name, sc.name),
+                type_ident(&sc.name, "Scene"),
+                format!("{}::{}", names::bare(&model.name), names::bare(&sc.name)),
             )
         }
     };
     let mut inst = lower_instance(model, &free, diags);
-    let pnames: Vec<String> = free.iter().map(|&i| model.params[i].name.clone()).collect();
-    let type_ident = format_ident!("{}", type_name);
+    let pnames = param_idents(model, &free);
+    let type_ident = type_name;
 
     // --- Params ---------------------------------------------------------
     let code = params_code(model, &free);
@@ -722,12 +722,12 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let model_docs = model.docs.join("\n");
     let scene_name = match scene {
         Some(s) => {
-            let n = &model.scenes[s].name;
+            let n = names::bare(&model.scenes[s].name);
             quote!(Some(#n))
         }
         None => quote!(None),
     };
-    let model_name = &model.name;
+    let model_name = names::bare(&model.name);
 
     // --- Functions -------------------------------------------------------
     let mut fns = TokenStream::new();
@@ -968,22 +968,27 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 
     let nan2 = quote!([f64::NAN, f64::NAN]);
     let info_doc = doc1(&format!("Static description of `{display_name}`."));
-    let type_doc =
-        if let Some(s) = scene {
-            let sc = &model.scenes[s];
-            let mut lines = sc.docs.clone();
-            lines.push(format!(
+    let type_doc = if let Some(s) = scene {
+        let sc = &model.scenes[s];
+        let mut lines = sc.docs.clone();
+        lines.push(format!(
             "Scene `{}` of model `{}`: free parameters {}; the others are folded into constants.",
-            sc.name,
-            model.name,
-            pnames.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+            names::bare(&sc.name),
+            names::bare(&model.name),
+            free.iter()
+                .map(|&i| format!("`{}`", names::bare(&model.params[i].name)))
+                .collect::<Vec<_>>()
+                .join(", ")
         ));
-            doc(&lines)
-        } else {
-            let mut lines = model.docs.clone();
-            lines.push(format!("Model `{}`, every parameter free.", model.name));
-            doc(&lines)
-        };
+        doc(&lines)
+    } else {
+        let mut lines = model.docs.clone();
+        lines.push(format!(
+            "Model `{}`, every parameter free.",
+            names::bare(&model.name)
+        ));
+        doc(&lines)
+    };
     let params_doc = doc1(&format!("Run-time parameters of `{display_name}`."));
     let params_items = code.items(&params_doc, &check_fn);
     quote! {
@@ -1021,7 +1026,7 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
             #[inline]
             fn oscillator(p: &Params) -> ::stickslip::Oscillator { oscillator(p) }
             #[inline]
-            fn static_bound(p: &Params) -> Option<f64> { #static_bound_body }
+            fn static_bound(p: &Params) -> ::core::option::Option<f64> { #static_bound_body }
             #[inline]
             fn flow(p: &Params, domain: usize, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
                 match domain { #flow_arms _ => #nan2 }
@@ -1031,7 +1036,7 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
                 match domain { #field_arms _ => #nan2 }
             }
             #[inline]
-            fn stick_forces(p: &Params, x: f64, phi: f64) -> Option<::stickslip::StickForces> { #stick_forces_body }
+            fn stick_forces(p: &Params, x: f64, phi: f64) -> ::core::option::Option<::stickslip::StickForces> { #stick_forces_body }
             #[inline]
             fn residual(p: &Params, mapping: usize, x0: f64, phi0: f64, x1: f64, phi1: f64) -> ::stickslip::nalgebra::Vector2<f64> {
                 match mapping { #residual_arms _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN) }
@@ -1049,6 +1054,23 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 /// The module body for a checked model: the full instance, then one
 /// submodule per scene. Returns formatted source with the `@generated` header.
 pub fn emit(model: &Model, options: &Options, diags: &mut Diagnostics) -> Option<String> {
+    // The parser only accepts identifiers, so every name has a Rust spelling;
+    // say so rather than emit code that does not compile, should one not.
+    let scene_names = model.scenes.iter().map(|s| &s.name);
+    for n in std::iter::once(&model.name)
+        .chain(model.params.iter().map(|p| &p.name))
+        .chain(scene_names)
+    {
+        if names::ident(n).is_none() {
+            diags.error(
+                Span::call_site(),
+                format!("internal: `{n}` has no spelling as a Rust identifier"),
+            );
+        }
+    }
+    if !diags.is_empty() {
+        return None;
+    }
     let mut items = if model.law.is_some() {
         smooth_items(model, diags)
     } else {
@@ -1076,8 +1098,12 @@ pub fn emit(model: &Model, options: &Options, diags: &mut Diagnostics) -> Option
             }
             None => instance_items(model, Some(s), diags),
         };
-        let m = format_ident!("{}", sc.name);
-        let d = doc1(&format!("Scene `{}` of model `{}`.", sc.name, model.name));
+        let m = param_ident(&sc.name);
+        let d = doc1(&format!(
+            "Scene `{}` of model `{}`.",
+            names::bare(&sc.name),
+            names::bare(&model.name)
+        ));
         items.extend(quote! {
             #d
             pub mod #m {
@@ -1102,7 +1128,7 @@ pub fn emit(model: &Model, options: &Options, diags: &mut Diagnostics) -> Option
         "// @generated by stickslip-codegen from `{}`: do not edit.\n\
          // Model `{}`: {} domains, {} boundaries, {} mappings, {} scenes.\n\n",
         options.origin,
-        model.name,
+        names::bare(&model.name),
         model.domains.len(),
         model.boundaries.len(),
         model.mappings.len(),

@@ -24,6 +24,7 @@ pub mod instance;
 pub mod lower;
 #[allow(missing_docs)]
 pub mod model;
+pub mod names;
 #[allow(missing_docs)]
 pub mod parse;
 pub mod pieces;
@@ -52,6 +53,7 @@ pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
         return Err(diags);
     }
     let Some(ast) = ast else { return Err(diags) };
+    names::check(&ast, &mut diags);
     match check::check(ast, &mut diags) {
         Some(m) if diags.is_empty() => Ok(m),
         _ => Err(diags),
@@ -66,7 +68,8 @@ pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile,
         Some(code) if diags.is_empty() => Ok(GeneratedFile {
             instances: instance_names(&model),
             doc: model.docs.join("\n"),
-            name: model.name,
+            module: names::ident_text(&model.name).unwrap_or_else(|| model.name.clone()),
+            name: names::bare(&model.name).to_string(),
             code,
         }),
         _ => Err(diags),
@@ -79,7 +82,9 @@ pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile,
 pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
     TokenStream::from_str(source).map_err(|e| {
         let mut d = Diagnostics::new();
-        d.error(e.span(), format!("cannot tokenize the model: {e}"));
+        let message = names::tokenize_hint(source, e.span())
+            .unwrap_or_else(|| format!("cannot tokenize the model: {e}"));
+        d.error(e.span(), message);
         d
     })
 }
@@ -87,8 +92,10 @@ pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
 /// A generated model read from a file.
 #[derive(Clone, Debug)]
 pub struct GeneratedFile {
-    /// The model's name (`model NAME { .. }`).
+    /// The model's name (`model NAME { .. }`), without `r#`.
     pub name: String,
+    /// The model's module name in Rust (`paper`; `r#fn` for a model `r#fn`).
+    pub module: String,
     /// The formatted module body.
     pub code: String,
     /// The model's doc comment.
@@ -102,7 +109,7 @@ pub struct GeneratedFile {
 pub struct InstanceName {
     /// `paper` or `paper::sweep_w`.
     pub name: String,
-    /// Rust path relative to the models module (same as `name`).
+    /// Rust path relative to the models module (`name` with keywords raw).
     pub path: String,
     /// The type implementing `Model` (`Paper`, `SweepW`), or `SmoothModel`
     /// for a model with a smooth law (`smooth`).
@@ -112,18 +119,19 @@ pub struct InstanceName {
 }
 
 fn instance_names(model: &Model) -> Vec<InstanceName> {
+    // Display names are bare (`fn`); paths are Rust (`r#fn`).
+    let rust = |n: &str| names::ident_text(n).unwrap_or_else(|| n.to_string());
     let mut out = vec![InstanceName {
-        name: model.name.clone(),
-        path: model.name.clone(),
-        type_name: emit::camel(&model.name),
+        name: names::bare(&model.name).to_string(),
+        path: rust(&model.name),
+        type_name: names::type_name(&model.name, "Model"),
         smooth: model.law.is_some(),
     }];
     for s in &model.scenes {
-        let p = format!("{}::{}", model.name, s.name);
         out.push(InstanceName {
-            name: p.clone(),
-            path: p,
-            type_name: emit::camel(&s.name),
+            name: format!("{}::{}", names::bare(&model.name), names::bare(&s.name)),
+            path: format!("{}::{}", rust(&model.name), rust(&s.name)),
+            type_name: names::type_name(&s.name, "Scene"),
             smooth: false,
         });
     }

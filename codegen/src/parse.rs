@@ -157,6 +157,8 @@ fn docs_of(attrs: &[Attribute], diags: &mut Diagnostics) -> Vec<String> {
 
 /// Parse a model from tokens, collecting every syntax error.
 pub fn parse_model(tokens: TokenStream, diags: &mut Diagnostics) -> Option<ModelAst> {
+    // Names as rustc reads them (NFC, no needless `r#`): see `crate::names`.
+    let tokens = crate::names::canonical_tokens(tokens);
     let parser = |input: ParseStream| parse_model_stream(input, diags);
     match syn::parse::Parser::parse2(parser, tokens) {
         Ok(m) => m,

@@ -10,7 +10,7 @@
 
 use proc_macro::TokenStream;
 use proc_macro2::{Span, TokenStream as Tokens};
-use quote::{format_ident, quote};
+use quote::quote;
 use stickslip_codegen::{GeneratedFile, Options};
 use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
@@ -86,7 +86,12 @@ fn expand(input: TokenStream, as_source: bool) -> Tokens {
             return syn::Error::new(Span::call_site(), format!("internal: {e}")).to_compile_error()
         }
     };
-    let name = format_ident!("{}", generated.name);
+    let name: Tokens = match generated.module.parse() {
+        Ok(t) => t,
+        Err(e) => {
+            return syn::Error::new(Span::call_site(), format!("internal: {e}")).to_compile_error()
+        }
+    };
     // Make the compiler rebuild when the model file changes.
     let track = tracked.map(|p| {
         quote!(

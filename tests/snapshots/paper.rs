@@ -51,7 +51,7 @@ pub struct Params {
     /// Default: `3`.
     pub W: f64,
 }
-impl Default for Params {
+impl ::core::default::Default for Params {
     fn default() -> Self {
         Self {
             m: 5.0,
@@ -133,26 +133,17 @@ impl ::stickslip::ParamSet for Params {
     fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
         let p = self;
         ::stickslip::param::check_values(self, &INFO)?;
-        let m = p.m;
-        let c = p.c;
-        let V = p.V;
-        let V1 = p.V1;
-        let V2 = p.V2;
-        let mus = p.mus;
-        let muk = p.muk;
-        let g = p.g;
-        let W = p.W;
-        let t0 = m * g;
-        let t1 = 1.0 / m;
-        let t2 = t1 * (muk * t0);
+        let t0 = p.m * p.g;
+        let t1 = 1.0 / p.m;
+        let t2 = t1 * (p.muk * t0);
         ::stickslip::param::check_conditions(
             &INFO,
             ::stickslip::param::Conditions {
-                mass: m,
-                stiffness: c,
-                frequency: W,
-                velocities: &[V2, V, V1],
-                stick: Some((t1 * (mus * t0), t2, -t2)),
+                mass: p.m,
+                stiffness: p.c,
+                frequency: p.W,
+                velocities: &[p.V2, p.V, p.V1],
+                stick: Some((t1 * (p.mus * t0), t2, -t2)),
             },
         )
     }
@@ -453,7 +444,7 @@ impl ::stickslip::Model for Paper {
         oscillator(p)
     }
     #[inline]
-    fn static_bound(p: &Params) -> Option<f64> {
+    fn static_bound(p: &Params) -> ::core::option::Option<f64> {
         Some(static_bound(p))
     }
     #[inline]
@@ -484,7 +475,11 @@ impl ::stickslip::Model for Paper {
         }
     }
     #[inline]
-    fn stick_forces(p: &Params, x: f64, phi: f64) -> Option<::stickslip::StickForces> {
+    fn stick_forces(
+        p: &Params,
+        x: f64,
+        phi: f64,
+    ) -> ::core::option::Option<::stickslip::StickForces> {
         Some(stick_forces(p, x, phi))
     }
     #[inline]
@@ -541,20 +536,11 @@ impl ::stickslip::Model for Paper {
 /// Effective coefficients of domain 4 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
 #[inline]
 pub fn coefficients_4(p: &Params) -> ::stickslip::Coefficients {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let mu4 = p.mu4;
-    let g = p.g;
-    let t0 = 1.0 / m;
+    let t0 = 1.0 / p.m;
     ::stickslip::Coefficients {
-        two_d: (d + mu4 * t0 * 0.5) * 2.0,
-        c: c,
-        b: -(t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4))),
+        two_d: (p.d + p.mu4 * t0 * 0.5) * 2.0,
+        c: p.c,
+        b: -(t0 * (p.muk * (p.m * p.g) + (p.mu3 * (p.V2 - p.V) + p.V2 * p.mu4))),
     }
 }
 /// Closed-form flow in domain 4 (SPEC §4, Appendix A): the state `[x, v]` at phase
@@ -562,77 +548,48 @@ pub fn coefficients_4(p: &Params) -> ::stickslip::Coefficients {
 /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
 #[inline]
 pub fn flow_4(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let mu4 = p.mu4;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d + mu4 * t0 * 0.5;
-    let t3 = c - W.powi(2);
-    let t4 = W * (t2 * 2.0);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d + p.mu4 * t0 * 0.5;
+    let t3 = p.c - p.W.powi(2);
+    let t4 = p.W * (t2 * 2.0);
     let t5 = 1.0 / (t3.powi(2) + t4.powi(2));
     let t6 = t1 * t3 * t5;
     let t7 = t5 * (t1 * t4);
-    let t8 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
+    let t8 = t0 * (p.muk * (p.m * p.g) + (p.mu3 * (p.V2 - p.V) + p.V2 * p.mu4)) / p.c;
     let t9 = phi0.cos();
     let t10 = phi0.sin();
     let t11 = phi1.cos();
     let t12 = phi1.sin();
     let t13 = x0 - (t8 + (t6 * t9 + t7 * t10));
-    let t14 = v0 - W * (t7 * t9 - t6 * t10);
-    let t15 = (phi1 - phi0) / W;
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t15);
+    let t14 = v0 - p.W * (t7 * t9 - t6 * t10);
+    let t15 = (phi1 - phi0) / p.W;
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t15);
     [
         t8 + (t6 * t11 + t7 * t12) + (t13 * ec16 + es16 * (t14 + t2 * t13)),
-        W * (t7 * t11 - t6 * t12) + (t14 * ec16 - es16 * (c * t13 + t2 * t14)),
+        p.W * (t7 * t11 - t6 * t12) + (t14 * ec16 - es16 * (p.c * t13 + t2 * t14)),
     ]
 }
 /// Normal vector field of domain 4 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
 /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
 #[inline]
 pub fn normal_field_4(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let mu4 = p.mu4;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d * 2.0;
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d * 2.0;
     let t3 = t1 * phi.cos()
-        - t0 * (-(muk * (m * g)) + (-(mu3 * (V2 - V)) + mu4 * (-V2 + y))) - y * t2
-        - c * x;
-    [t3, -(W * (t1 * phi.sin()) + (c * y + t3 * (mu4 * t0 + t2)))]
+        - t0 * (-(p.muk * (p.m * p.g)) + (-(p.mu3 * (p.V2 - p.V)) + p.mu4 * (-p.V2 + y)))
+        - y * t2 - p.c * x;
+    [t3, -(p.W * (t1 * phi.sin()) + (p.c * y + t3 * (p.mu4 * t0 + t2)))]
 }
 /// Effective coefficients of domain 3 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
 #[inline]
 pub fn coefficients_3(p: &Params) -> ::stickslip::Coefficients {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let t0 = 1.0 / m;
+    let t0 = 1.0 / p.m;
     ::stickslip::Coefficients {
-        two_d: (d - 0.5 * (mu3 * t0)) * 2.0,
-        c: c,
-        b: -(t0 * (muk * (m * g) - V * mu3)),
+        two_d: (p.d - 0.5 * (p.mu3 * t0)) * 2.0,
+        c: p.c,
+        b: -(t0 * (p.muk * (p.m * p.g) - p.V * p.mu3)),
     }
 }
 /// Closed-form flow in domain 3 (SPEC §4, Appendix A): the state `[x, v]` at phase
@@ -640,72 +597,48 @@ pub fn coefficients_3(p: &Params) -> ::stickslip::Coefficients {
 /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
 #[inline]
 pub fn flow_3(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi0.cos();
     let t5 = phi0.sin();
     let t6 = phi1.cos();
     let t7 = phi1.sin();
-    let t8 = (phi1 - phi0) / W;
-    let t9 = W * (t2 * 2.0);
+    let t8 = (phi1 - phi0) / p.W;
+    let t9 = p.W * (t2 * 2.0);
     let t10 = 1.0 / (t3.powi(2) + t9.powi(2));
     let t11 = t1 * t3 * t10;
     let t12 = t10 * (t1 * t9);
-    let t13 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t13 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
-    let t15 = v0 - W * (t4 * t12 - t5 * t11);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t8);
+    let t15 = v0 - p.W * (t4 * t12 - t5 * t11);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t8);
     [
         t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
-        W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (c * t14 + t2 * t15)),
+        p.W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15)),
     ]
 }
 /// Normal vector field of domain 3 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
 /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
 #[inline]
 pub fn normal_field_3(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d * 2.0;
-    let t3 = -(c * x)
-        + (-(y * t2) + (t1 * phi.cos() + t0 * (muk * (m * g) + mu3 * (-V + y))));
-    [t3, -(W * (t1 * phi.sin())) + (-(c * y) + t3 * (mu3 * t0 - t2))]
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d * 2.0;
+    let t3 = -(p.c * x)
+        + (-(y * t2)
+            + (t1 * phi.cos() + t0 * (p.muk * (p.m * p.g) + p.mu3 * (-p.V + y))));
+    [t3, -(p.W * (t1 * phi.sin())) + (-(p.c * y) + t3 * (p.mu3 * t0 - t2))]
 }
 /// Effective coefficients of domain 1 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
 #[inline]
 pub fn coefficients_1(p: &Params) -> ::stickslip::Coefficients {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let t0 = 1.0 / m;
+    let t0 = 1.0 / p.m;
     ::stickslip::Coefficients {
-        two_d: (d - 0.5 * (mu2 * t0)) * 2.0,
-        c: c,
-        b: t0 * (muk * (m * g) + V * mu2),
+        two_d: (p.d - 0.5 * (p.mu2 * t0)) * 2.0,
+        c: p.c,
+        b: t0 * (p.muk * (p.m * p.g) + p.V * p.mu2),
     }
 }
 /// Closed-form flow in domain 1 (SPEC §4, Appendix A): the state `[x, v]` at phase
@@ -713,74 +646,48 @@ pub fn coefficients_1(p: &Params) -> ::stickslip::Coefficients {
 /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
 #[inline]
 pub fn flow_1(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi0.cos();
     let t5 = phi0.sin();
     let t6 = phi1.cos();
     let t7 = phi1.sin();
-    let t8 = (phi1 - phi0) / W;
-    let t9 = W * (t2 * 2.0);
+    let t8 = (phi1 - phi0) / p.W;
+    let t9 = p.W * (t2 * 2.0);
     let t10 = 1.0 / (t3.powi(2) + t9.powi(2));
     let t11 = t1 * t3 * t10;
     let t12 = t10 * (t1 * t9);
-    let t13 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t13 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
-    let t15 = v0 - W * (t4 * t12 - t5 * t11);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t8);
+    let t15 = v0 - p.W * (t4 * t12 - t5 * t11);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t8);
     [
         t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
-        W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (c * t14 + t2 * t15)),
+        p.W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15)),
     ]
 }
 /// Normal vector field of domain 1 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
 /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
 #[inline]
 pub fn normal_field_1(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d * 2.0;
-    let t3 = -(c * x)
-        + (-(y * t2) + (t1 * phi.cos() - t0 * (muk * (m * g) - mu2 * (-V + y))));
-    [t3, -(W * (t1 * phi.sin())) + (-(c * y) + t3 * (mu2 * t0 - t2))]
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d * 2.0;
+    let t3 = -(p.c * x)
+        + (-(y * t2)
+            + (t1 * phi.cos() - t0 * (p.muk * (p.m * p.g) - p.mu2 * (-p.V + y))));
+    [t3, -(p.W * (t1 * phi.sin())) + (-(p.c * y) + t3 * (p.mu2 * t0 - t2))]
 }
 /// Effective coefficients of domain 2 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
 #[inline]
 pub fn coefficients_2(p: &Params) -> ::stickslip::Coefficients {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu1 = p.mu1;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let t0 = 1.0 / m;
+    let t0 = 1.0 / p.m;
     ::stickslip::Coefficients {
-        two_d: (d + 0.5 * (mu1 * t0)) * 2.0,
-        c: c,
-        b: t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)),
+        two_d: (p.d + 0.5 * (p.mu1 * t0)) * 2.0,
+        c: p.c,
+        b: t0 * (p.muk * (p.m * p.g) - (p.mu2 * (p.V1 - p.V) + p.V1 * p.mu1)),
     }
 }
 /// Closed-form flow in domain 2 (SPEC §4, Appendix A): the state `[x, v]` at phase
@@ -788,62 +695,43 @@ pub fn coefficients_2(p: &Params) -> ::stickslip::Coefficients {
 /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
 #[inline]
 pub fn flow_2(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu1 = p.mu1;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d + 0.5 * (mu1 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d + 0.5 * (p.mu1 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi0.cos();
     let t5 = phi0.sin();
     let t6 = phi1.cos();
     let t7 = phi1.sin();
-    let t8 = (phi1 - phi0) / W;
-    let t9 = W * (t2 * 2.0);
+    let t8 = (phi1 - phi0) / p.W;
+    let t9 = p.W * (t2 * 2.0);
     let t10 = 1.0 / (t3.powi(2) + t9.powi(2));
     let t11 = t1 * t3 * t10;
     let t12 = t10 * (t1 * t9);
-    let t13 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
+    let t13 = -(t0 * (p.muk * (p.m * p.g) - (p.mu2 * (p.V1 - p.V) + p.V1 * p.mu1))
+        / p.c);
     let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
-    let t15 = v0 - W * (t4 * t12 - t5 * t11);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t8);
+    let t15 = v0 - p.W * (t4 * t12 - t5 * t11);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t8);
     [
         t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
-        W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (c * t14 + t2 * t15)),
+        p.W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15)),
     ]
 }
 /// Normal vector field of domain 2 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
 /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
 #[inline]
 pub fn normal_field_2(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu1 = p.mu1;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d * 2.0;
-    let t3 = -(c * x)
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d * 2.0;
+    let t3 = -(p.c * x)
         + (-(y * t2)
             + (t1 * phi.cos()
-                - t0 * (muk * (m * g) + (-(mu2 * (V1 - V)) + mu1 * (-V1 + y)))));
-    [t3, -(W * (t1 * phi.sin()) + (c * y + t3 * (mu1 * t0 + t2)))]
+                - t0
+                    * (p.muk * (p.m * p.g)
+                        + (-(p.mu2 * (p.V1 - p.V)) + p.mu1 * (-p.V1 + y)))));
+    [t3, -(p.W * (t1 * phi.sin()) + (p.c * y + t3 * (p.mu1 * t0 + t2)))]
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
 /// Residual `f` only.
@@ -855,35 +743,26 @@ pub fn residual_1_11(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t11 = phi0.cos();
     let t12 = phi0.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t14 = V - W * (t9 * t11 - t8 * t12);
-    let t15 = 1.0 / W * (phi1 - phi0);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t15);
+    let t14 = p.V - p.W * (t9 * t11 - t8 * t12);
+    let t15 = 1.0 / p.W * (phi1 - phi0);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t15);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
-        -V + (W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (c * t13 + t2 * t14))),
+        -p.V + (p.W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (p.c * t13 + t2 * t14))),
     )
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -896,27 +775,18 @@ pub fn mapping_1_11(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -924,35 +794,35 @@ pub fn mapping_1_11(
     let t16 = t9 * t14 + t10 * t15;
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
-    let t19 = V - W * t17;
+    let t19 = p.V - p.W * t17;
     let t20 = t6 * (phi1 - phi0);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t20);
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t20);
     let t22 = t19 + t2 * t18;
-    let t23 = c * t18 + t2 * t19;
+    let t23 = p.c * t18 + t2 * t19;
     let t24 = t2 * es21;
-    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t25 = t6 * ((-p.c + t2.powi(2)) * es21 - t2 * ec21);
     let t26 = t18 * t25;
     let t27 = t6 * (ec21 - t24);
-    let t28 = W * t16;
+    let t28 = p.W * t16;
     let t29 = t22 * t27;
     let t30 = t19 * t25;
     let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t18 * ec21 + es21 * t22)),
-            -V + (W * t13 + (t19 * ec21 - es21 * t23)),
+            -p.V + (p.W * t13 + (t19 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec21 + t24,
             -(t17 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t17)),
-            -(c * es21),
-            ec21 * t28 - t30 - (t31 + es21 * (-(c * t17) + t2 * t28)),
+            -(p.c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(p.c * t17) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t26 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -966,36 +836,27 @@ pub fn residual_1_22(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t11 = phi0.cos();
     let t12 = phi0.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t14);
-    let t16 = V1 - W * (t9 * t11 - t8 * t12);
+    let t14 = 1.0 / p.W * (phi1 - phi0);
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t14);
+    let t16 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec15 + es15 * (t2 * t13 + t16))),
-        -V1 + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t13 + t2 * t16))),
+        -p.V1
+            + (p.W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (p.c * t13 + t2 * t16))),
     )
 }
 /// Local mapping `1_22` in domain 1 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1008,28 +869,18 @@ pub fn mapping_1_22(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1038,34 +889,34 @@ pub fn mapping_1_22(
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
     let t19 = t6 * (phi1 - phi0);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t19);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t19);
     let t21 = t2 * es20;
-    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t18 * t22;
     let t24 = t6 * (ec20 - t21);
-    let t25 = W * t16;
-    let t26 = V1 - W * t17;
+    let t25 = p.W * t16;
+    let t26 = p.V1 - p.W * t17;
     let t27 = t2 * t18 + t26;
-    let t28 = c * t18 + t2 * t26;
+    let t28 = p.c * t18 + t2 * t26;
     let t29 = t24 * t27;
     let t30 = t22 * t26;
     let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t18 * ec20 + es20 * t27)),
-            -V1 + (W * t13 + (ec20 * t26 - es20 * t28)),
+            -p.V1 + (p.W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec20 + t21,
             -(t17 * ec20 + t23) + (es20 * (t25 - t2 * t17) - t29),
-            -(c * es20),
-            ec20 * t25 - t30 - (es20 * (-(c * t17) + t2 * t25) + t31),
+            -(p.c * es20),
+            ec20 * t25 - t30 - (es20 * (-(p.c * t17) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t23 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1079,36 +930,27 @@ pub fn residual_1_21(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t11 = phi0.cos();
     let t12 = phi0.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t14 = V - W * (t9 * t11 - t8 * t12);
-    let t15 = 1.0 / W * (phi1 - phi0);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t15);
+    let t14 = p.V - p.W * (t9 * t11 - t8 * t12);
+    let t15 = 1.0 / p.W * (phi1 - phi0);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t15);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
-        -V1 + (W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (c * t13 + t2 * t14))),
+        -p.V1
+            + (p.W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (p.c * t13 + t2 * t14))),
     )
 }
 /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1121,28 +963,18 @@ pub fn mapping_1_21(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1150,35 +982,35 @@ pub fn mapping_1_21(
     let t16 = t9 * t14 + t10 * t15;
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
-    let t19 = V - W * t17;
+    let t19 = p.V - p.W * t17;
     let t20 = t6 * (phi1 - phi0);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t20);
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t20);
     let t22 = t19 + t2 * t18;
-    let t23 = c * t18 + t2 * t19;
+    let t23 = p.c * t18 + t2 * t19;
     let t24 = t2 * es21;
-    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t25 = t6 * ((-p.c + t2.powi(2)) * es21 - t2 * ec21);
     let t26 = t18 * t25;
     let t27 = t6 * (ec21 - t24);
-    let t28 = W * t16;
+    let t28 = p.W * t16;
     let t29 = t22 * t27;
     let t30 = t19 * t25;
     let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t18 * ec21 + es21 * t22)),
-            -V1 + (W * t13 + (t19 * ec21 - es21 * t23)),
+            -p.V1 + (p.W * t13 + (t19 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec21 + t24,
             -(t17 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t17)),
-            -(c * es21),
-            ec21 * t28 - t30 - (t31 + es21 * (-(c * t17) + t2 * t28)),
+            -(p.c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(p.c * t17) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t26 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1192,36 +1024,26 @@ pub fn residual_1_12(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t11 = phi0.cos();
     let t12 = phi0.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t14 = 1.0 / W * (phi1 - phi0);
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t14);
-    let t16 = V1 - W * (t9 * t11 - t8 * t12);
+    let t14 = 1.0 / p.W * (phi1 - phi0);
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t14);
+    let t16 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec15 + es15 * (t2 * t13 + t16))),
-        -V + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t13 + t2 * t16))),
+        -p.V + (p.W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (p.c * t13 + t2 * t16))),
     )
 }
 /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1234,28 +1056,18 @@ pub fn mapping_1_12(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu2 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu2 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) + V * mu2) / c);
+    let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1264,34 +1076,34 @@ pub fn mapping_1_12(
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
     let t19 = t6 * (phi1 - phi0);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t19);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t19);
     let t21 = t2 * es20;
-    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t18 * t22;
     let t24 = t6 * (ec20 - t21);
-    let t25 = W * t16;
-    let t26 = V1 - W * t17;
+    let t25 = p.W * t16;
+    let t26 = p.V1 - p.W * t17;
     let t27 = t2 * t18 + t26;
-    let t28 = c * t18 + t2 * t26;
+    let t28 = p.c * t18 + t2 * t26;
     let t29 = t24 * t27;
     let t30 = t22 * t26;
     let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t18 * ec20 + es20 * t27)),
-            -V + (W * t13 + (ec20 * t26 - es20 * t28)),
+            -p.V + (p.W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec20 + t21,
             -(t17 * ec20 + t23) + (es20 * (t25 - t2 * t17) - t29),
-            -(c * es20),
-            ec20 * t25 - t30 - (es20 * (-(c * t17) + t2 * t25) + t31),
+            -(p.c * es20),
+            ec20 * t25 - t30 - (es20 * (-(p.c * t17) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t23 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1305,37 +1117,28 @@ pub fn residual_2_22(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu1 = p.mu1;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d + 0.5 * (mu1 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d + 0.5 * (p.mu1 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
+    let t10 = -(t0 * (p.muk * (p.m * p.g) - (p.mu2 * (p.V1 - p.V) + p.V1 * p.mu1))
+        / p.c);
     let t11 = phi0.cos();
     let t12 = phi0.sin();
-    let t13 = 1.0 / W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t15 = V1 - W * (t9 * t11 - t8 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
+    let t15 = p.V1 - p.W * (t9 * t11 - t8 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
-        -V1 + (W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
+        -p.V1
+            + (p.W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15))),
     )
 }
 /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1348,29 +1151,19 @@ pub fn mapping_2_22(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V1 = p.V1;
-    let muk = p.muk;
-    let mu1 = p.mu1;
-    let mu2 = p.mu2;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d + 0.5 * (mu1 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d + 0.5 * (p.mu1 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = -(t0 * (muk * (m * g) - (mu2 * (V1 - V) + V1 * mu1)) / c);
+    let t11 = -(t0 * (p.muk * (p.m * p.g) - (p.mu2 * (p.V1 - p.V) + p.V1 * p.mu1))
+        / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1379,34 +1172,34 @@ pub fn mapping_2_22(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let t20 = V1 - W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t20 = p.V1 - p.W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
-    let t23 = c * t19 + t2 * t20;
+    let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
-    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t25 = t6 * ((-p.c + t2.powi(2)) * es21 - t2 * ec21);
     let t26 = t19 * t25;
     let t27 = t6 * (ec21 - t24);
-    let t28 = W * t17;
+    let t28 = p.W * t17;
     let t29 = t22 * t27;
     let t30 = t20 * t25;
     let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t19 * ec21 + es21 * t22)),
-            -V1 + (W * t13 + (t20 * ec21 - es21 * t23)),
+            -p.V1 + (p.W * t13 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec21 + t24,
             -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
-            -(c * es21),
-            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
+            -(p.c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(p.c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t26 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1420,36 +1213,27 @@ pub fn residual_3_33(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t11 = phi0.cos();
     let t12 = phi0.sin();
-    let t13 = 1.0 / W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t15 = V2 - W * (t9 * t11 - t8 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
+    let t15 = p.V2 - p.W * (t9 * t11 - t8 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
-        -V2 + (W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
+        -p.V2
+            + (p.W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15))),
     )
 }
 /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1462,28 +1246,18 @@ pub fn mapping_3_33(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1492,34 +1266,34 @@ pub fn mapping_3_33(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let t20 = V2 - W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t20 = p.V2 - p.W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
-    let t23 = c * t19 + t2 * t20;
+    let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
-    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t25 = t6 * ((-p.c + t2.powi(2)) * es21 - t2 * ec21);
     let t26 = t19 * t25;
     let t27 = t6 * (ec21 - t24);
-    let t28 = W * t17;
+    let t28 = p.W * t17;
     let t29 = t22 * t27;
     let t30 = t20 * t25;
     let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t19 * ec21 + es21 * t22)),
-            -V2 + (W * t13 + (t20 * ec21 - es21 * t23)),
+            -p.V2 + (p.W * t13 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec21 + t24,
             -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
-            -(c * es21),
-            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
+            -(p.c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(p.c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t26 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1533,35 +1307,26 @@ pub fn residual_3_11(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t11 = phi0.cos();
     let t12 = phi0.sin();
-    let t13 = 1.0 / W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t13);
-    let t16 = V - W * (t9 * t11 - t8 * t12);
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let t16 = p.V - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec15 + es15 * (t2 * t14 + t16))),
-        -V + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t14 + t2 * t16))),
+        -p.V + (p.W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (p.c * t14 + t2 * t16))),
     )
 }
 /// Local mapping `3_11` in domain 3 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1574,27 +1339,18 @@ pub fn mapping_3_11(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1603,34 +1359,34 @@ pub fn mapping_3_11(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t16);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t16);
     let t21 = t2 * es20;
-    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t19 * t22;
     let t24 = t6 * (ec20 - t21);
-    let t25 = W * t17;
-    let t26 = V - W * t18;
+    let t25 = p.W * t17;
+    let t26 = p.V - p.W * t18;
     let t27 = t2 * t19 + t26;
-    let t28 = c * t19 + t2 * t26;
+    let t28 = p.c * t19 + t2 * t26;
     let t29 = t24 * t27;
     let t30 = t22 * t26;
     let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t19 * ec20 + es20 * t27)),
-            -V + (W * t13 + (ec20 * t26 - es20 * t28)),
+            -p.V + (p.W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec20 + t21,
             -(t18 * ec20 + t23) + (es20 * (t25 - t2 * t18) - t29),
-            -(c * es20),
-            ec20 * t25 - t30 - (es20 * (-(c * t18) + t2 * t25) + t31),
+            -(p.c * es20),
+            ec20 * t25 - t30 - (es20 * (-(p.c * t18) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t23 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1644,36 +1400,26 @@ pub fn residual_3_13(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t11 = phi0.cos();
     let t12 = phi0.sin();
-    let t13 = 1.0 / W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t15 = V2 - W * (t9 * t11 - t8 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
+    let t15 = p.V2 - p.W * (t9 * t11 - t8 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
-        -V + (W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
+        -p.V + (p.W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15))),
     )
 }
 /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1686,28 +1432,18 @@ pub fn mapping_3_13(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1716,34 +1452,34 @@ pub fn mapping_3_13(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let t20 = V2 - W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t20 = p.V2 - p.W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
-    let t23 = c * t19 + t2 * t20;
+    let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
-    let t25 = t6 * ((-c + t2.powi(2)) * es21 - t2 * ec21);
+    let t25 = t6 * ((-p.c + t2.powi(2)) * es21 - t2 * ec21);
     let t26 = t19 * t25;
     let t27 = t6 * (ec21 - t24);
-    let t28 = W * t17;
+    let t28 = p.W * t17;
     let t29 = t22 * t27;
     let t30 = t20 * t25;
     let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t19 * ec21 + es21 * t22)),
-            -V + (W * t13 + (t20 * ec21 - es21 * t23)),
+            -p.V + (p.W * t13 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec21 + t24,
             -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
-            -(c * es21),
-            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
+            -(p.c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(p.c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t26 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1757,36 +1493,27 @@ pub fn residual_3_31(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = W * (t2 * 2.0);
+    let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
-    let t10 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t11 = phi0.cos();
     let t12 = phi0.sin();
-    let t13 = 1.0 / W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, c, t13);
-    let t16 = V - W * (t9 * t11 - t8 * t12);
+    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let t16 = p.V - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec15 + es15 * (t2 * t14 + t16))),
-        -V2 + (W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (c * t14 + t2 * t16))),
+        -p.V2
+            + (p.W * (t4 * t9 - t5 * t8) + (ec15 * t16 - es15 * (p.c * t14 + t2 * t16))),
     )
 }
 /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1799,28 +1526,18 @@ pub fn mapping_3_31(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d - 0.5 * (mu3 * t0);
-    let t3 = c - W.powi(2);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d - 0.5 * (p.mu3 * t0);
+    let t3 = p.c - p.W.powi(2);
     let t4 = phi1.cos();
     let t5 = phi1.sin();
-    let t6 = 1.0 / W;
-    let t7 = W * (t2 * 2.0);
+    let t6 = 1.0 / p.W;
+    let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
     let t9 = t1 * t3 * t8;
     let t10 = t8 * (t1 * t7);
-    let t11 = t0 * (muk * (m * g) - V * mu3) / c;
+    let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
     let t14 = phi0.cos();
@@ -1829,34 +1546,34 @@ pub fn mapping_3_31(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, c, t16);
+    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t16);
     let t21 = t2 * es20;
-    let t22 = t6 * ((-c + t2.powi(2)) * es20 - t2 * ec20);
+    let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t19 * t22;
     let t24 = t6 * (ec20 - t21);
-    let t25 = W * t17;
-    let t26 = V - W * t18;
+    let t25 = p.W * t17;
+    let t26 = p.V - p.W * t18;
     let t27 = t2 * t19 + t26;
-    let t28 = c * t19 + t2 * t26;
+    let t28 = p.c * t19 + t2 * t26;
     let t29 = t24 * t27;
     let t30 = t22 * t26;
     let t31 = -(t24 * t28);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t11 + t12 + (t19 * ec20 + es20 * t27)),
-            -V2 + (W * t13 + (ec20 * t26 - es20 * t28)),
+            -p.V2 + (p.W * t13 + (ec20 * t26 - es20 * t28)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec20 + t21,
             -(t18 * ec20 + t23) + (es20 * (t25 - t2 * t18) - t29),
-            -(c * es20),
-            ec20 * t25 - t30 - (es20 * (-(c * t18) + t2 * t25) + t31),
+            -(p.c * es20),
+            ec20 * t25 - t30 - (es20 * (-(p.c * t18) + t2 * t25) + t31),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t13 + (t23 + t29),
             0.0,
-            -(W * t12) + (t30 + t31),
+            -(p.W * t12) + (t30 + t31),
         ),
     }
 }
@@ -1870,37 +1587,27 @@ pub fn residual_4_33(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let mu4 = p.mu4;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d + mu4 * t0 * 0.5;
-    let t3 = c - W.powi(2);
-    let t4 = W * (t2 * 2.0);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d + p.mu4 * t0 * 0.5;
+    let t3 = p.c - p.W.powi(2);
+    let t4 = p.W * (t2 * 2.0);
     let t5 = 1.0 / (t3.powi(2) + t4.powi(2));
     let t6 = t1 * t3 * t5;
     let t7 = t5 * (t1 * t4);
-    let t8 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
+    let t8 = t0 * (p.muk * (p.m * p.g) + (p.mu3 * (p.V2 - p.V) + p.V2 * p.mu4)) / p.c;
     let t9 = phi1.cos();
     let t10 = phi1.sin();
     let t11 = phi0.cos();
     let t12 = phi0.sin();
-    let t13 = 1.0 / W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t8 + (t6 * t11 + t7 * t12));
-    let t15 = V2 - W * (t7 * t11 - t6 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, c, t13);
+    let t15 = p.V2 - p.W * (t7 * t11 - t6 * t12);
+    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t8 + (t6 * t9 + t7 * t10) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
-        -V2 + (W * (t7 * t9 - t6 * t10) + (t15 * ec16 - es16 * (c * t14 + t2 * t15))),
+        -p.V2
+            + (p.W * (t7 * t9 - t6 * t10) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15))),
     )
 }
 /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
@@ -1913,65 +1620,54 @@ pub fn mapping_4_33(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let V2 = p.V2;
-    let muk = p.muk;
-    let mu3 = p.mu3;
-    let mu4 = p.mu4;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = d + mu4 * t0 * 0.5;
-    let t3 = c - W.powi(2);
-    let t4 = W * (t2 * 2.0);
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = p.d + p.mu4 * t0 * 0.5;
+    let t3 = p.c - p.W.powi(2);
+    let t4 = p.W * (t2 * 2.0);
     let t5 = 1.0 / (t3.powi(2) + t4.powi(2));
     let t6 = t1 * t3 * t5;
     let t7 = t5 * (t1 * t4);
-    let t8 = t0 * (muk * (m * g) + (mu3 * (V2 - V) + V2 * mu4)) / c;
+    let t8 = t0 * (p.muk * (p.m * p.g) + (p.mu3 * (p.V2 - p.V) + p.V2 * p.mu4)) / p.c;
     let t9 = phi1.cos();
     let t10 = phi1.sin();
     let t11 = t6 * t9 + t7 * t10;
     let t12 = t7 * t9 - t6 * t10;
-    let t13 = 1.0 / W;
+    let t13 = 1.0 / p.W;
     let t14 = phi0.cos();
     let t15 = phi0.sin();
     let t16 = t13 * (phi1 - phi0);
     let t17 = t6 * t14 + t7 * t15;
     let t18 = t7 * t14 - t6 * t15;
     let t19 = x0 - (t8 + t17);
-    let t20 = V2 - W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, c, t16);
+    let t20 = p.V2 - p.W * t18;
+    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
-    let t23 = c * t19 + t2 * t20;
+    let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
-    let t25 = t13 * ((t2.powi(2) - c) * es21 - t2 * ec21);
+    let t25 = t13 * ((t2.powi(2) - p.c) * es21 - t2 * ec21);
     let t26 = t19 * t25;
     let t27 = t13 * (ec21 - t24);
-    let t28 = W * t17;
+    let t28 = p.W * t17;
     let t29 = t22 * t27;
     let t30 = t20 * t25;
     let t31 = -(t23 * t27);
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
             -x1 + (t8 + t11 + (t19 * ec21 + es21 * t22)),
-            -V2 + (W * t12 + (t20 * ec21 - es21 * t23)),
+            -p.V2 + (p.W * t12 + (t20 * ec21 - es21 * t23)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(
             ec21 + t24,
             -(t18 * ec21 + t26) + (-t29 + es21 * (t28 - t2 * t18)),
-            -(c * es21),
-            ec21 * t28 - t30 - (t31 + es21 * (-(c * t18) + t2 * t28)),
+            -(p.c * es21),
+            ec21 * t28 - t30 - (t31 + es21 * (-(p.c * t18) + t2 * t28)),
         ),
         d_next: ::stickslip::nalgebra::Matrix2::new(
             -1.0,
             t12 + (t26 + t29),
             0.0,
-            -(W * t11) + (t30 + t31),
+            -(p.W * t11) + (t30 + t31),
         ),
     }
 }
@@ -1985,18 +1681,11 @@ pub fn residual_0_11_above(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let mus = p.mus;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
+    let t0 = 1.0 / p.m;
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (x0 + V * (1.0 / W * (phi1 - phi0))),
-        Q0 * t0 * phi1.cos() - V * (d * 2.0) - c * x1 - t0 * (mus * (m * g)),
+        -x1 + (x0 + p.V * (1.0 / p.W * (phi1 - phi0))),
+        p.Q0 * t0 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1
+            - t0 * (p.mus * (p.m * p.g)),
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
@@ -2009,25 +1698,17 @@ pub fn mapping_0_11_above(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let mus = p.mus;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = 1.0 / W;
-    let t3 = V * t2;
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = 1.0 / p.W;
+    let t3 = p.V * t2;
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + V * (t2 * (phi1 - phi0))),
-            t1 * phi1.cos() - V * (d * 2.0) - c * x1 - t0 * (mus * (m * g)),
+            -x1 + (x0 + p.V * (t2 * (phi1 - phi0))),
+            t1 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t3, 0.0, 0.0),
-        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -c, -(t1 * phi1.sin())),
+        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * phi1.sin())),
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -2040,18 +1721,11 @@ pub fn residual_0_11_below(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let mus = p.mus;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
+    let t0 = 1.0 / p.m;
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (x0 + V * (1.0 / W * (phi1 - phi0))),
-        t0 * (mus * (m * g)) + (Q0 * t0 * phi1.cos() - V * (d * 2.0) - c * x1),
+        -x1 + (x0 + p.V * (1.0 / p.W * (phi1 - phi0))),
+        t0 * (p.mus * (p.m * p.g))
+            + (p.Q0 * t0 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1),
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -2064,67 +1738,43 @@ pub fn mapping_0_11_below(
     x1: f64,
     phi1: f64,
 ) -> ::stickslip::MappingEval {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let mus = p.mus;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let W = p.W;
-    let t0 = 1.0 / m;
-    let t1 = Q0 * t0;
-    let t2 = 1.0 / W;
-    let t3 = V * t2;
+    let t0 = 1.0 / p.m;
+    let t1 = p.Q0 * t0;
+    let t2 = 1.0 / p.W;
+    let t3 = p.V * t2;
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + V * (t2 * (phi1 - phi0))),
-            t0 * (mus * (m * g)) + (t1 * phi1.cos() - V * (d * 2.0) - c * x1),
+            -x1 + (x0 + p.V * (t2 * (phi1 - phi0))),
+            t0 * (p.mus * (p.m * p.g)) + (t1 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t3, 0.0, 0.0),
-        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -c, -(t1 * phi1.sin())),
+        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * phi1.sin())),
     }
 }
 /// Velocities of the boundaries, lowest first.
 #[inline]
 pub fn boundary_velocities(p: &Params) -> [f64; 3usize] {
-    let V = p.V;
-    let V1 = p.V1;
-    let V2 = p.V2;
-    [V2, V, V1]
+    [p.V2, p.V, p.V1]
 }
 /// The oscillator: `x'' + 2 d x' + c x = A0 cos(W t) - f(x')` (Eq. 5).
 #[inline]
 pub fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let Q0 = p.Q0;
-    let W = p.W;
     ::stickslip::Oscillator {
-        mass: m,
-        damping: d,
-        stiffness: c,
-        amplitude: Q0 / m,
-        frequency: W,
+        mass: p.m,
+        damping: p.d,
+        stiffness: p.c,
+        amplitude: p.Q0 / p.m,
+        frequency: p.W,
     }
 }
 /// Forces on the stick boundary Sigma1 at `(x, W t)` (Eqs. 2, 24–25).
 #[inline]
 pub fn stick_forces(p: &Params, x: f64, phi: f64) -> ::stickslip::StickForces {
-    let m = p.m;
-    let d = p.d;
-    let c = p.c;
-    let V = p.V;
-    let mus = p.mus;
-    let muk = p.muk;
-    let g = p.g;
-    let Q0 = p.Q0;
-    let t0 = m * g;
-    let t1 = 1.0 / m;
-    let t2 = t1 * (mus * t0);
-    let t3 = t1 * (muk * t0);
-    let t4 = -(c * x) + (-(V * (d * 2.0)) + Q0 * t1 * phi.cos());
+    let t0 = p.m * p.g;
+    let t1 = 1.0 / p.m;
+    let t2 = t1 * (p.mus * t0);
+    let t3 = t1 * (p.muk * t0);
+    let t4 = -(p.c * x) + (-(p.V * (p.d * 2.0)) + p.Q0 * t1 * phi.cos());
     ::stickslip::StickForces {
         non_friction: t4,
         input_above: -t3 + t4,
@@ -2136,10 +1786,7 @@ pub fn stick_forces(p: &Params, x: f64, phi: f64) -> ::stickslip::StickForces {
 /// The static friction bound `as` per unit mass on the stick boundary.
 #[inline]
 pub fn static_bound(p: &Params) -> f64 {
-    let m = p.m;
-    let mus = p.mus;
-    let g = p.g;
-    1.0 / m * (mus * (m * g))
+    1.0 / p.m * (p.mus * (p.m * p.g))
 }
 /// Scene `sweep_w` of model `paper`.
 pub mod sweep_w {
@@ -2151,7 +1798,7 @@ pub mod sweep_w {
         /// Default: `3`.
         pub W: f64,
     }
-    impl Default for Params {
+    impl ::core::default::Default for Params {
         fn default() -> Self {
             Self { W: 3.0 }
         }
@@ -2173,13 +1820,12 @@ pub mod sweep_w {
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
             ::stickslip::param::check_values(self, &INFO)?;
-            let W = p.W;
             ::stickslip::param::check_conditions(
                 &INFO,
                 ::stickslip::param::Conditions {
                     mass: 5.0,
                     stiffness: 30.0,
-                    frequency: W,
+                    frequency: p.W,
                     velocities: &[1.5, 3.0, 4.5],
                     stick: Some((4.9, 3.9200000000000004, -3.9200000000000004)),
                 },
@@ -2476,7 +2122,7 @@ pub mod sweep_w {
             oscillator(p)
         }
         #[inline]
-        fn static_bound(p: &Params) -> Option<f64> {
+        fn static_bound(p: &Params) -> ::core::option::Option<f64> {
             Some(static_bound(p))
         }
         #[inline]
@@ -2517,7 +2163,7 @@ pub mod sweep_w {
             p: &Params,
             x: f64,
             phi: f64,
-        ) -> Option<::stickslip::StickForces> {
+        ) -> ::core::option::Option<::stickslip::StickForces> {
             Some(stick_forces(p, x, phi))
         }
         #[inline]
@@ -2586,9 +2232,8 @@ pub mod sweep_w {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_4(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
-        let t1 = W * 0.30000000000000004;
+        let t0 = 30.0 - p.W.powi(2);
+        let t1 = p.W * 0.30000000000000004;
         let t2 = 1.0 / (t0.powi(2) + t1.powi(2));
         let t3 = 14.0 * t0 * t2;
         let t4 = t2 * (14.0 * t1);
@@ -2597,8 +2242,8 @@ pub mod sweep_w {
         let t7 = phi1.cos();
         let t8 = phi1.sin();
         let t9 = x0 - (0.13466666666666668 + (t3 * t5 + t4 * t6));
-        let t10 = v0 - W * (t4 * t5 - t3 * t6);
-        let t11 = (phi1 - phi0) / W;
+        let t10 = v0 - p.W * (t4 * t5 - t3 * t6);
+        let t11 = (phi1 - phi0) / p.W;
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
@@ -2607,7 +2252,7 @@ pub mod sweep_w {
         [
             0.13466666666666668 + (t3 * t7 + t4 * t8)
                 + (t9 * ec12 + es12 * (t10 + 0.15000000000000002 * t9)),
-            W * (t4 * t7 - t3 * t8)
+            p.W * (t4 * t7 - t3 * t8)
                 + (t10 * ec12 - es12 * (30.0 * t9 + 0.15000000000000002 * t10)),
         ]
     }
@@ -2615,11 +2260,10 @@ pub mod sweep_w {
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_4(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let W = p.W;
         let t0 = 14.0 * phi.cos()
             - 0.2 * (-19.6 + (0.15000000000000002 + 0.5 * (-1.5 + y))) - 0.2 * y
             - 30.0 * x;
-        [t0, -(W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.30000000000000004)]
+        [t0, -(p.W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.30000000000000004)]
     }
     /// Effective coefficients of domain 3 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
     #[inline]
@@ -2636,19 +2280,18 @@ pub mod sweep_w {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_3(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi0.cos();
         let t2 = phi0.sin();
         let t3 = phi1.cos();
         let t4 = phi1.sin();
-        let t5 = (phi1 - phi0) / W;
-        let t6 = W * 0.18;
+        let t5 = (phi1 - phi0) / p.W;
+        let t6 = p.W * 0.18;
         let t7 = 1.0 / (t0.powi(2) + t6.powi(2));
         let t8 = 14.0 * t0 * t7;
         let t9 = t7 * (14.0 * t6);
         let t10 = x0 - (0.12866666666666668 + (t1 * t8 + t2 * t9));
-        let t11 = v0 - W * (t1 * t9 - t2 * t8);
+        let t11 = v0 - p.W * (t1 * t9 - t2 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -2657,17 +2300,16 @@ pub mod sweep_w {
         [
             0.12866666666666668 + (t3 * t8 + t4 * t9)
                 + (t10 * ec12 + es12 * (t11 + 0.09 * t10)),
-            W * (t3 * t9 - t4 * t8) + (t11 * ec12 - es12 * (30.0 * t10 + 0.09 * t11)),
+            p.W * (t3 * t9 - t4 * t8) + (t11 * ec12 - es12 * (30.0 * t10 + 0.09 * t11)),
         ]
     }
     /// Normal vector field of domain 3 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_3(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let W = p.W;
         let t0 = -(30.0 * x)
             + (-(0.2 * y) + (14.0 * phi.cos() - 0.2 * (-19.6 + -0.1 * (-3.0 + y))));
-        [t0, -(W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.18)]
+        [t0, -(p.W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.18)]
     }
     /// Effective coefficients of domain 1 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
     #[inline]
@@ -2684,19 +2326,18 @@ pub mod sweep_w {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_1(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi0.cos();
         let t2 = phi0.sin();
         let t3 = phi1.cos();
         let t4 = phi1.sin();
-        let t5 = (phi1 - phi0) / W;
-        let t6 = 0.1 * W;
+        let t5 = (phi1 - phi0) / p.W;
+        let t6 = 0.1 * p.W;
         let t7 = 1.0 / (t0.powi(2) + t6.powi(2));
         let t8 = 14.0 * t0 * t7;
         let t9 = t7 * (14.0 * t6);
         let t10 = x0 - (-0.1406666666666667 + (t1 * t8 + t2 * t9));
-        let t11 = v0 - W * (t1 * t9 - t2 * t8);
+        let t11 = v0 - p.W * (t1 * t9 - t2 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2705,17 +2346,16 @@ pub mod sweep_w {
         [
             -0.1406666666666667 + (t3 * t8 + t4 * t9)
                 + (t10 * ec12 + es12 * (t11 + 0.05 * t10)),
-            W * (t3 * t9 - t4 * t8) + (t11 * ec12 - es12 * (30.0 * t10 + 0.05 * t11)),
+            p.W * (t3 * t9 - t4 * t8) + (t11 * ec12 - es12 * (30.0 * t10 + 0.05 * t11)),
         ]
     }
     /// Normal vector field of domain 1 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_1(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let W = p.W;
         let t0 = -(30.0 * x)
             + (-(0.2 * y) + (14.0 * phi.cos() - 0.2 * (19.6 + -0.5 * (-3.0 + y))));
-        [t0, -(W * (14.0 * phi.sin())) + (-30.0 * y + -0.1 * t0)]
+        [t0, -(p.W * (14.0 * phi.sin())) + (-30.0 * y + -0.1 * t0)]
     }
     /// Effective coefficients of domain 2 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
     #[inline]
@@ -2732,19 +2372,18 @@ pub mod sweep_w {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_2(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi0.cos();
         let t2 = phi0.sin();
         let t3 = phi1.cos();
         let t4 = phi1.sin();
-        let t5 = (phi1 - phi0) / W;
-        let t6 = W * 0.22000000000000003;
+        let t5 = (phi1 - phi0) / p.W;
+        let t6 = p.W * 0.22000000000000003;
         let t7 = 1.0 / (t0.powi(2) + t6.powi(2));
         let t8 = 14.0 * t0 * t7;
         let t9 = t7 * (14.0 * t6);
         let t10 = x0 - (-0.12266666666666669 + (t1 * t8 + t2 * t9));
-        let t11 = v0 - W * (t1 * t9 - t2 * t8);
+        let t11 = v0 - p.W * (t1 * t9 - t2 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
@@ -2753,7 +2392,7 @@ pub mod sweep_w {
         [
             -0.12266666666666669 + (t3 * t8 + t4 * t9)
                 + (t10 * ec12 + es12 * (t11 + 0.11000000000000001 * t10)),
-            W * (t3 * t9 - t4 * t8)
+            p.W * (t3 * t9 - t4 * t8)
                 + (t11 * ec12 - es12 * (30.0 * t10 + 0.11000000000000001 * t11)),
         ]
     }
@@ -2761,11 +2400,10 @@ pub mod sweep_w {
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_2(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let W = p.W;
         let t0 = -(30.0 * x)
             + (-(0.2 * y)
                 + (14.0 * phi.cos() - 0.2 * (19.6 + (-0.75 + 0.1 * (-4.5 + y)))));
-        [t0, -(W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.22000000000000003)]
+        [t0, -(p.W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.22000000000000003)]
     }
     /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
     /// Residual `f` only.
@@ -2777,19 +2415,18 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 0.1 * W;
+        let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
-        let t10 = 3.0 - W * (t6 * t7 - t5 * t8);
-        let t11 = 1.0 / W * (phi1 - phi0);
+        let t10 = 3.0 - p.W * (t6 * t7 - t5 * t8);
+        let t11 = 1.0 / p.W * (phi1 - phi0);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2800,7 +2437,7 @@ pub mod sweep_w {
                 + (-0.1406666666666667 + (t1 * t5 + t2 * t6)
                     + (t9 * ec12 + es12 * (t10 + 0.05 * t9))),
             -3.0
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (t10 * ec12 - es12 * (30.0 * t9 + 0.05 * t10))),
         )
     }
@@ -2814,12 +2451,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = 0.1 * W;
+        let t3 = 1.0 / p.W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -2830,7 +2466,7 @@ pub mod sweep_w {
         let t12 = t6 * t10 + t7 * t11;
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
-        let t15 = 3.0 - W * t13;
+        let t15 = 3.0 - p.W * t13;
         let t16 = t3 * (phi1 - phi0);
         let (ec17, es17) = ::stickslip::homogeneous::underdamped(
             0.05,
@@ -2843,14 +2479,14 @@ pub mod sweep_w {
         let t21 = t3 * (-29.9975 * es17 - 0.05 * ec17);
         let t22 = t14 * t21;
         let t23 = t3 * (ec17 - t20);
-        let t24 = W * t12;
+        let t24 = p.W * t12;
         let t25 = t18 * t23;
         let t26 = t15 * t21;
         let t27 = -(t19 * t23);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t8 + (t14 * ec17 + es17 * t18)),
-                -3.0 + (W * t9 + (t15 * ec17 - es17 * t19)),
+                -3.0 + (p.W * t9 + (t15 * ec17 - es17 * t19)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t20,
@@ -2862,7 +2498,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t22 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -2876,30 +2512,29 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 0.1 * W;
+        let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let (ec11, es11) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t10,
         );
-        let t12 = 4.5 - W * (t6 * t7 - t5 * t8);
+        let t12 = 4.5 - p.W * (t6 * t7 - t5 * t8);
         ::stickslip::nalgebra::Vector2::new(
             -x1
                 + (-0.1406666666666667 + (t1 * t5 + t2 * t6)
                     + (t9 * ec11 + es11 * (0.05 * t9 + t12))),
             -4.5
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (ec11 * t12 - es11 * (30.0 * t9 + 0.05 * t12))),
         )
     }
@@ -2913,12 +2548,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = 0.1 * W;
+        let t3 = 1.0 / p.W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -2939,8 +2573,8 @@ pub mod sweep_w {
         let t18 = t3 * (-29.9975 * es16 - 0.05 * ec16);
         let t19 = t14 * t18;
         let t20 = t3 * (ec16 - t17);
-        let t21 = W * t12;
-        let t22 = 4.5 - W * t13;
+        let t21 = p.W * t12;
+        let t22 = 4.5 - p.W * t13;
         let t23 = 0.05 * t14 + t22;
         let t24 = 30.0 * t14 + 0.05 * t22;
         let t25 = t20 * t23;
@@ -2949,7 +2583,7 @@ pub mod sweep_w {
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t8 + (t14 * ec16 + es16 * t23)),
-                -4.5 + (W * t9 + (ec16 * t22 - es16 * t24)),
+                -4.5 + (p.W * t9 + (ec16 * t22 - es16 * t24)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec16 + t17,
@@ -2961,7 +2595,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t19 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -2975,19 +2609,18 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 0.1 * W;
+        let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
-        let t10 = 3.0 - W * (t6 * t7 - t5 * t8);
-        let t11 = 1.0 / W * (phi1 - phi0);
+        let t10 = 3.0 - p.W * (t6 * t7 - t5 * t8);
+        let t11 = 1.0 / p.W * (phi1 - phi0);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2998,7 +2631,7 @@ pub mod sweep_w {
                 + (-0.1406666666666667 + (t1 * t5 + t2 * t6)
                     + (t9 * ec12 + es12 * (t10 + 0.05 * t9))),
             -4.5
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (t10 * ec12 - es12 * (30.0 * t9 + 0.05 * t10))),
         )
     }
@@ -3012,12 +2645,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = 0.1 * W;
+        let t3 = 1.0 / p.W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3028,7 +2660,7 @@ pub mod sweep_w {
         let t12 = t6 * t10 + t7 * t11;
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
-        let t15 = 3.0 - W * t13;
+        let t15 = 3.0 - p.W * t13;
         let t16 = t3 * (phi1 - phi0);
         let (ec17, es17) = ::stickslip::homogeneous::underdamped(
             0.05,
@@ -3041,14 +2673,14 @@ pub mod sweep_w {
         let t21 = t3 * (-29.9975 * es17 - 0.05 * ec17);
         let t22 = t14 * t21;
         let t23 = t3 * (ec17 - t20);
-        let t24 = W * t12;
+        let t24 = p.W * t12;
         let t25 = t18 * t23;
         let t26 = t15 * t21;
         let t27 = -(t19 * t23);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t8 + (t14 * ec17 + es17 * t18)),
-                -4.5 + (W * t9 + (t15 * ec17 - es17 * t19)),
+                -4.5 + (p.W * t9 + (t15 * ec17 - es17 * t19)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t20,
@@ -3060,7 +2692,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t22 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3074,30 +2706,29 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 0.1 * W;
+        let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let (ec11, es11) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t10,
         );
-        let t12 = 4.5 - W * (t6 * t7 - t5 * t8);
+        let t12 = 4.5 - p.W * (t6 * t7 - t5 * t8);
         ::stickslip::nalgebra::Vector2::new(
             -x1
                 + (-0.1406666666666667 + (t1 * t5 + t2 * t6)
                     + (t9 * ec11 + es11 * (0.05 * t9 + t12))),
             -3.0
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (ec11 * t12 - es11 * (30.0 * t9 + 0.05 * t12))),
         )
     }
@@ -3111,12 +2742,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = 0.1 * W;
+        let t3 = 1.0 / p.W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3137,8 +2767,8 @@ pub mod sweep_w {
         let t18 = t3 * (-29.9975 * es16 - 0.05 * ec16);
         let t19 = t14 * t18;
         let t20 = t3 * (ec16 - t17);
-        let t21 = W * t12;
-        let t22 = 4.5 - W * t13;
+        let t21 = p.W * t12;
+        let t22 = 4.5 - p.W * t13;
         let t23 = 0.05 * t14 + t22;
         let t24 = 30.0 * t14 + 0.05 * t22;
         let t25 = t20 * t23;
@@ -3147,7 +2777,7 @@ pub mod sweep_w {
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t8 + (t14 * ec16 + es16 * t23)),
-                -3.0 + (W * t9 + (ec16 * t22 - es16 * t24)),
+                -3.0 + (p.W * t9 + (ec16 * t22 - es16 * t24)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec16 + t17,
@@ -3159,7 +2789,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t19 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3173,19 +2803,18 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = W * 0.22000000000000003;
+        let t3 = p.W * 0.22000000000000003;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
-        let t9 = 1.0 / W * (phi1 - phi0);
+        let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (-0.12266666666666669 + (t5 * t7 + t6 * t8));
-        let t11 = 4.5 - W * (t6 * t7 - t5 * t8);
+        let t11 = 4.5 - p.W * (t6 * t7 - t5 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
@@ -3196,7 +2825,7 @@ pub mod sweep_w {
                 + (-0.12266666666666669 + (t1 * t5 + t2 * t6)
                     + (t10 * ec12 + es12 * (t11 + 0.11000000000000001 * t10))),
             -4.5
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (t11 * ec12 - es12 * (30.0 * t10 + 0.11000000000000001 * t11))),
         )
     }
@@ -3210,12 +2839,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = W * 0.22000000000000003;
+        let t3 = 1.0 / p.W;
+        let t4 = p.W * 0.22000000000000003;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3227,7 +2855,7 @@ pub mod sweep_w {
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (-0.12266666666666669 + t13);
-        let t16 = 4.5 - W * t14;
+        let t16 = 4.5 - p.W * t14;
         let (ec17, es17) = ::stickslip::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
@@ -3239,14 +2867,14 @@ pub mod sweep_w {
         let t21 = t3 * (-29.9879 * es17 - 0.11000000000000001 * ec17);
         let t22 = t15 * t21;
         let t23 = t3 * (ec17 - t20);
-        let t24 = W * t13;
+        let t24 = p.W * t13;
         let t25 = t18 * t23;
         let t26 = t16 * t21;
         let t27 = -(t19 * t23);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.12266666666666669 + t8 + (t15 * ec17 + es17 * t18)),
-                -4.5 + (W * t9 + (t16 * ec17 - es17 * t19)),
+                -4.5 + (p.W * t9 + (t16 * ec17 - es17 * t19)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t20,
@@ -3259,7 +2887,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t22 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3273,19 +2901,18 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = W * 0.18;
+        let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
-        let t9 = 1.0 / W * (phi1 - phi0);
+        let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
-        let t11 = 1.5 - W * (t6 * t7 - t5 * t8);
+        let t11 = 1.5 - p.W * (t6 * t7 - t5 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -3296,7 +2923,7 @@ pub mod sweep_w {
                 + (0.12866666666666668 + (t1 * t5 + t2 * t6)
                     + (t10 * ec12 + es12 * (t11 + 0.09 * t10))),
             -1.5
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (t11 * ec12 - es12 * (30.0 * t10 + 0.09 * t11))),
         )
     }
@@ -3310,12 +2937,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = W * 0.18;
+        let t3 = 1.0 / p.W;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3327,7 +2953,7 @@ pub mod sweep_w {
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
-        let t16 = 1.5 - W * t14;
+        let t16 = 1.5 - p.W * t14;
         let (ec17, es17) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -3339,14 +2965,14 @@ pub mod sweep_w {
         let t21 = t3 * (-29.9919 * es17 - 0.09 * ec17);
         let t22 = t15 * t21;
         let t23 = t3 * (ec17 - t20);
-        let t24 = W * t13;
+        let t24 = p.W * t13;
         let t25 = t18 * t23;
         let t26 = t16 * t21;
         let t27 = -(t19 * t23);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t8 + (t15 * ec17 + es17 * t18)),
-                -1.5 + (W * t9 + (t16 * ec17 - es17 * t19)),
+                -1.5 + (p.W * t9 + (t16 * ec17 - es17 * t19)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t20,
@@ -3358,7 +2984,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t22 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3372,30 +2998,29 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = W * 0.18;
+        let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
-        let t9 = 1.0 / W * (phi1 - phi0);
+        let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let (ec11, es11) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t9,
         );
-        let t12 = 3.0 - W * (t6 * t7 - t5 * t8);
+        let t12 = 3.0 - p.W * (t6 * t7 - t5 * t8);
         ::stickslip::nalgebra::Vector2::new(
             -x1
                 + (0.12866666666666668 + (t1 * t5 + t2 * t6)
                     + (t10 * ec11 + es11 * (0.09 * t10 + t12))),
             -3.0
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (ec11 * t12 - es11 * (30.0 * t10 + 0.09 * t12))),
         )
     }
@@ -3409,12 +3034,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = W * 0.18;
+        let t3 = 1.0 / p.W;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3435,8 +3059,8 @@ pub mod sweep_w {
         let t18 = t3 * (-29.9919 * es16 - 0.09 * ec16);
         let t19 = t15 * t18;
         let t20 = t3 * (ec16 - t17);
-        let t21 = W * t13;
-        let t22 = 3.0 - W * t14;
+        let t21 = p.W * t13;
+        let t22 = 3.0 - p.W * t14;
         let t23 = 0.09 * t15 + t22;
         let t24 = 30.0 * t15 + 0.09 * t22;
         let t25 = t20 * t23;
@@ -3445,7 +3069,7 @@ pub mod sweep_w {
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t8 + (t15 * ec16 + es16 * t23)),
-                -3.0 + (W * t9 + (ec16 * t22 - es16 * t24)),
+                -3.0 + (p.W * t9 + (ec16 * t22 - es16 * t24)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec16 + t17,
@@ -3457,7 +3081,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t19 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3471,19 +3095,18 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = W * 0.18;
+        let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
-        let t9 = 1.0 / W * (phi1 - phi0);
+        let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
-        let t11 = 1.5 - W * (t6 * t7 - t5 * t8);
+        let t11 = 1.5 - p.W * (t6 * t7 - t5 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -3494,7 +3117,7 @@ pub mod sweep_w {
                 + (0.12866666666666668 + (t1 * t5 + t2 * t6)
                     + (t10 * ec12 + es12 * (t11 + 0.09 * t10))),
             -3.0
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (t11 * ec12 - es12 * (30.0 * t10 + 0.09 * t11))),
         )
     }
@@ -3508,12 +3131,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = W * 0.18;
+        let t3 = 1.0 / p.W;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3525,7 +3147,7 @@ pub mod sweep_w {
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
-        let t16 = 1.5 - W * t14;
+        let t16 = 1.5 - p.W * t14;
         let (ec17, es17) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -3537,14 +3159,14 @@ pub mod sweep_w {
         let t21 = t3 * (-29.9919 * es17 - 0.09 * ec17);
         let t22 = t15 * t21;
         let t23 = t3 * (ec17 - t20);
-        let t24 = W * t13;
+        let t24 = p.W * t13;
         let t25 = t18 * t23;
         let t26 = t16 * t21;
         let t27 = -(t19 * t23);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t8 + (t15 * ec17 + es17 * t18)),
-                -3.0 + (W * t9 + (t16 * ec17 - es17 * t19)),
+                -3.0 + (p.W * t9 + (t16 * ec17 - es17 * t19)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t20,
@@ -3556,7 +3178,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t22 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3570,30 +3192,29 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = W * 0.18;
+        let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
         let t7 = phi0.cos();
         let t8 = phi0.sin();
-        let t9 = 1.0 / W * (phi1 - phi0);
+        let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let (ec11, es11) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t9,
         );
-        let t12 = 3.0 - W * (t6 * t7 - t5 * t8);
+        let t12 = 3.0 - p.W * (t6 * t7 - t5 * t8);
         ::stickslip::nalgebra::Vector2::new(
             -x1
                 + (0.12866666666666668 + (t1 * t5 + t2 * t6)
                     + (t10 * ec11 + es11 * (0.09 * t10 + t12))),
             -1.5
-                + (W * (t1 * t6 - t2 * t5)
+                + (p.W * (t1 * t6 - t2 * t5)
                     + (ec11 * t12 - es11 * (30.0 * t10 + 0.09 * t12))),
         )
     }
@@ -3607,12 +3228,11 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
+        let t0 = 30.0 - p.W.powi(2);
         let t1 = phi1.cos();
         let t2 = phi1.sin();
-        let t3 = 1.0 / W;
-        let t4 = W * 0.18;
+        let t3 = 1.0 / p.W;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
         let t6 = 14.0 * t0 * t5;
         let t7 = t5 * (14.0 * t4);
@@ -3633,8 +3253,8 @@ pub mod sweep_w {
         let t18 = t3 * (-29.9919 * es16 - 0.09 * ec16);
         let t19 = t15 * t18;
         let t20 = t3 * (ec16 - t17);
-        let t21 = W * t13;
-        let t22 = 3.0 - W * t14;
+        let t21 = p.W * t13;
+        let t22 = 3.0 - p.W * t14;
         let t23 = 0.09 * t15 + t22;
         let t24 = 30.0 * t15 + 0.09 * t22;
         let t25 = t20 * t23;
@@ -3643,7 +3263,7 @@ pub mod sweep_w {
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t8 + (t15 * ec16 + es16 * t23)),
-                -1.5 + (W * t9 + (ec16 * t22 - es16 * t24)),
+                -1.5 + (p.W * t9 + (ec16 * t22 - es16 * t24)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec16 + t17,
@@ -3655,7 +3275,7 @@ pub mod sweep_w {
                 -1.0,
                 t9 + (t19 + t25),
                 0.0,
-                -(W * t8) + (t26 + t27),
+                -(p.W * t8) + (t26 + t27),
             ),
         }
     }
@@ -3669,9 +3289,8 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
-        let t1 = W * 0.30000000000000004;
+        let t0 = 30.0 - p.W.powi(2);
+        let t1 = p.W * 0.30000000000000004;
         let t2 = 1.0 / (t0.powi(2) + t1.powi(2));
         let t3 = 14.0 * t0 * t2;
         let t4 = t2 * (14.0 * t1);
@@ -3679,9 +3298,9 @@ pub mod sweep_w {
         let t6 = phi1.sin();
         let t7 = phi0.cos();
         let t8 = phi0.sin();
-        let t9 = 1.0 / W * (phi1 - phi0);
+        let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.13466666666666668 + (t3 * t7 + t4 * t8));
-        let t11 = 1.5 - W * (t4 * t7 - t3 * t8);
+        let t11 = 1.5 - p.W * (t4 * t7 - t3 * t8);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
@@ -3692,7 +3311,7 @@ pub mod sweep_w {
                 + (0.13466666666666668 + (t3 * t5 + t4 * t6)
                     + (t10 * ec12 + es12 * (t11 + 0.15000000000000002 * t10))),
             -1.5
-                + (W * (t4 * t5 - t3 * t6)
+                + (p.W * (t4 * t5 - t3 * t6)
                     + (t11 * ec12 - es12 * (30.0 * t10 + 0.15000000000000002 * t11))),
         )
     }
@@ -3706,9 +3325,8 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 30.0 - W.powi(2);
-        let t1 = W * 0.30000000000000004;
+        let t0 = 30.0 - p.W.powi(2);
+        let t1 = p.W * 0.30000000000000004;
         let t2 = 1.0 / (t0.powi(2) + t1.powi(2));
         let t3 = 14.0 * t0 * t2;
         let t4 = t2 * (14.0 * t1);
@@ -3716,14 +3334,14 @@ pub mod sweep_w {
         let t6 = phi1.sin();
         let t7 = t3 * t5 + t4 * t6;
         let t8 = t4 * t5 - t3 * t6;
-        let t9 = 1.0 / W;
+        let t9 = 1.0 / p.W;
         let t10 = phi0.cos();
         let t11 = phi0.sin();
         let t12 = t9 * (phi1 - phi0);
         let t13 = t3 * t10 + t4 * t11;
         let t14 = t4 * t10 - t3 * t11;
         let t15 = x0 - (0.13466666666666668 + t13);
-        let t16 = 1.5 - W * t14;
+        let t16 = 1.5 - p.W * t14;
         let (ec17, es17) = ::stickslip::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
@@ -3735,14 +3353,14 @@ pub mod sweep_w {
         let t21 = t9 * (-29.9775 * es17 - 0.15000000000000002 * ec17);
         let t22 = t15 * t21;
         let t23 = t9 * (ec17 - t20);
-        let t24 = W * t13;
+        let t24 = p.W * t13;
         let t25 = t18 * t23;
         let t26 = t16 * t21;
         let t27 = -(t19 * t23);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.13466666666666668 + t7 + (t15 * ec17 + es17 * t18)),
-                -1.5 + (W * t8 + (t16 * ec17 - es17 * t19)),
+                -1.5 + (p.W * t8 + (t16 * ec17 - es17 * t19)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t20,
@@ -3755,7 +3373,7 @@ pub mod sweep_w {
                 -1.0,
                 t8 + (t22 + t25),
                 0.0,
-                -(W * t7) + (t26 + t27),
+                -(p.W * t7) + (t26 + t27),
             ),
         }
     }
@@ -3769,9 +3387,8 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / W * (phi1 - phi0))),
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
             14.0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
         )
     }
@@ -3785,8 +3402,7 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 1.0 / W;
+        let t0 = 1.0 / p.W;
         let t1 = 3.0 * t0;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
@@ -3812,9 +3428,8 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let W = p.W;
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / W * (phi1 - phi0))),
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
             4.9 + (14.0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
         )
     }
@@ -3828,8 +3443,7 @@ pub mod sweep_w {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let W = p.W;
-        let t0 = 1.0 / W;
+        let t0 = 1.0 / p.W;
         let t1 = 3.0 * t0;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
@@ -3854,13 +3468,12 @@ pub mod sweep_w {
     /// The oscillator: `x'' + 2 d x' + c x = A0 cos(W t) - f(x')` (Eq. 5).
     #[inline]
     pub fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-        let W = p.W;
         ::stickslip::Oscillator {
             mass: 5.0,
             damping: 0.1,
             stiffness: 30.0,
             amplitude: 14.0,
-            frequency: W,
+            frequency: p.W,
         }
     }
     /// Forces on the stick boundary Sigma1 at `(x, W t)` (Eqs. 2, 24–25).
@@ -3896,7 +3509,7 @@ pub mod reference {
         /// Default: `3`.
         pub W: f64,
     }
-    impl Default for Params {
+    impl ::core::default::Default for Params {
         fn default() -> Self {
             Self { Q0: 70.0, W: 3.0 }
         }
@@ -3920,13 +3533,12 @@ pub mod reference {
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
             ::stickslip::param::check_values(self, &INFO)?;
-            let W = p.W;
             ::stickslip::param::check_conditions(
                 &INFO,
                 ::stickslip::param::Conditions {
                     mass: 5.0,
                     stiffness: 30.0,
-                    frequency: W,
+                    frequency: p.W,
                     velocities: &[1.5, 3.0, 4.5],
                     stick: Some((4.9, 3.9200000000000004, -3.9200000000000004)),
                 },
@@ -4214,7 +3826,7 @@ pub mod reference {
             oscillator(p)
         }
         #[inline]
-        fn static_bound(p: &Params) -> Option<f64> {
+        fn static_bound(p: &Params) -> ::core::option::Option<f64> {
             Some(static_bound(p))
         }
         #[inline]
@@ -4255,7 +3867,7 @@ pub mod reference {
             p: &Params,
             x: f64,
             phi: f64,
-        ) -> Option<::stickslip::StickForces> {
+        ) -> ::core::option::Option<::stickslip::StickForces> {
             Some(stick_forces(p, x, phi))
         }
         #[inline]
@@ -4320,11 +3932,9 @@ pub mod reference {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_4(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
-        let t2 = W * 0.30000000000000004;
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
+        let t2 = p.W * 0.30000000000000004;
         let t3 = 1.0 / (t1.powi(2) + t2.powi(2));
         let t4 = t0 * t1 * t3;
         let t5 = t3 * (t0 * t2);
@@ -4333,8 +3943,8 @@ pub mod reference {
         let t8 = phi1.cos();
         let t9 = phi1.sin();
         let t10 = x0 - (0.13466666666666668 + (t4 * t6 + t5 * t7));
-        let t11 = v0 - W * (t5 * t6 - t4 * t7);
-        let t12 = (phi1 - phi0) / W;
+        let t11 = v0 - p.W * (t5 * t6 - t4 * t7);
+        let t12 = (phi1 - phi0) / p.W;
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
@@ -4343,7 +3953,7 @@ pub mod reference {
         [
             0.13466666666666668 + (t4 * t8 + t5 * t9)
                 + (t10 * ec13 + es13 * (t11 + 0.15000000000000002 * t10)),
-            W * (t5 * t8 - t4 * t9)
+            p.W * (t5 * t8 - t4 * t9)
                 + (t11 * ec13 - es13 * (30.0 * t10 + 0.15000000000000002 * t11)),
         ]
     }
@@ -4351,13 +3961,11 @@ pub mod reference {
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_4(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
+        let t0 = p.Q0 * 0.2;
         let t1 = t0 * phi.cos()
             - 0.2 * (-19.6 + (0.15000000000000002 + 0.5 * (-1.5 + y))) - 0.2 * y
             - 30.0 * x;
-        [t1, -(W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.30000000000000004)]
+        [t1, -(p.W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.30000000000000004)]
     }
     /// Effective coefficients of domain 3 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
     #[inline]
@@ -4374,21 +3982,19 @@ pub mod reference {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_3(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi0.cos();
         let t3 = phi0.sin();
         let t4 = phi1.cos();
         let t5 = phi1.sin();
-        let t6 = (phi1 - phi0) / W;
-        let t7 = W * 0.18;
+        let t6 = (phi1 - phi0) / p.W;
+        let t7 = p.W * 0.18;
         let t8 = 1.0 / (t1.powi(2) + t7.powi(2));
         let t9 = t0 * t1 * t8;
         let t10 = t8 * (t0 * t7);
         let t11 = x0 - (0.12866666666666668 + (t2 * t9 + t3 * t10));
-        let t12 = v0 - W * (t2 * t10 - t3 * t9);
+        let t12 = v0 - p.W * (t2 * t10 - t3 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -4397,19 +4003,17 @@ pub mod reference {
         [
             0.12866666666666668 + (t4 * t9 + t5 * t10)
                 + (t11 * ec13 + es13 * (t12 + 0.09 * t11)),
-            W * (t4 * t10 - t5 * t9) + (t12 * ec13 - es13 * (30.0 * t11 + 0.09 * t12)),
+            p.W * (t4 * t10 - t5 * t9) + (t12 * ec13 - es13 * (30.0 * t11 + 0.09 * t12)),
         ]
     }
     /// Normal vector field of domain 3 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_3(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
+        let t0 = p.Q0 * 0.2;
         let t1 = -(30.0 * x)
             + (-(0.2 * y) + (t0 * phi.cos() - 0.2 * (-19.6 + -0.1 * (-3.0 + y))));
-        [t1, -(W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.18)]
+        [t1, -(p.W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.18)]
     }
     /// Effective coefficients of domain 1 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
     #[inline]
@@ -4426,21 +4030,19 @@ pub mod reference {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_1(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi0.cos();
         let t3 = phi0.sin();
         let t4 = phi1.cos();
         let t5 = phi1.sin();
-        let t6 = (phi1 - phi0) / W;
-        let t7 = 0.1 * W;
+        let t6 = (phi1 - phi0) / p.W;
+        let t7 = 0.1 * p.W;
         let t8 = 1.0 / (t1.powi(2) + t7.powi(2));
         let t9 = t0 * t1 * t8;
         let t10 = t8 * (t0 * t7);
         let t11 = x0 - (-0.1406666666666667 + (t2 * t9 + t3 * t10));
-        let t12 = v0 - W * (t2 * t10 - t3 * t9);
+        let t12 = v0 - p.W * (t2 * t10 - t3 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4449,19 +4051,17 @@ pub mod reference {
         [
             -0.1406666666666667 + (t4 * t9 + t5 * t10)
                 + (t11 * ec13 + es13 * (t12 + 0.05 * t11)),
-            W * (t4 * t10 - t5 * t9) + (t12 * ec13 - es13 * (30.0 * t11 + 0.05 * t12)),
+            p.W * (t4 * t10 - t5 * t9) + (t12 * ec13 - es13 * (30.0 * t11 + 0.05 * t12)),
         ]
     }
     /// Normal vector field of domain 1 (Eq. 10), `F = A0 cos(phi) - f(y) - 2 d y - c x`,
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_1(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
+        let t0 = p.Q0 * 0.2;
         let t1 = -(30.0 * x)
             + (-(0.2 * y) + (t0 * phi.cos() - 0.2 * (19.6 + -0.5 * (-3.0 + y))));
-        [t1, -(W * (t0 * phi.sin())) + (-30.0 * y + -0.1 * t1)]
+        [t1, -(p.W * (t0 * phi.sin())) + (-30.0 * y + -0.1 * t1)]
     }
     /// Effective coefficients of domain 2 (SPEC Eq. A.1): `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`.
     #[inline]
@@ -4478,21 +4078,19 @@ pub mod reference {
     /// every damping regime, written in the elapsed time `(phi1 - phi0) / W`.
     #[inline]
     pub fn flow_2(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi0.cos();
         let t3 = phi0.sin();
         let t4 = phi1.cos();
         let t5 = phi1.sin();
-        let t6 = (phi1 - phi0) / W;
-        let t7 = W * 0.22000000000000003;
+        let t6 = (phi1 - phi0) / p.W;
+        let t7 = p.W * 0.22000000000000003;
         let t8 = 1.0 / (t1.powi(2) + t7.powi(2));
         let t9 = t0 * t1 * t8;
         let t10 = t8 * (t0 * t7);
         let t11 = x0 - (-0.12266666666666669 + (t2 * t9 + t3 * t10));
-        let t12 = v0 - W * (t2 * t10 - t3 * t9);
+        let t12 = v0 - p.W * (t2 * t10 - t3 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
@@ -4501,7 +4099,7 @@ pub mod reference {
         [
             -0.12266666666666669 + (t4 * t9 + t5 * t10)
                 + (t11 * ec13 + es13 * (t12 + 0.11000000000000001 * t11)),
-            W * (t4 * t10 - t5 * t9)
+            p.W * (t4 * t10 - t5 * t9)
                 + (t12 * ec13 - es13 * (30.0 * t11 + 0.11000000000000001 * t12)),
         ]
     }
@@ -4509,13 +4107,11 @@ pub mod reference {
     /// and its rate along the flow `DF = F_x y + F_y F + F_phi W` (Eqs. 21–23): `[F, DF]`.
     #[inline]
     pub fn normal_field_2(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
+        let t0 = p.Q0 * 0.2;
         let t1 = -(30.0 * x)
             + (-(0.2 * y)
                 + (t0 * phi.cos() - 0.2 * (19.6 + (-0.75 + 0.1 * (-4.5 + y)))));
-        [t1, -(W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.22000000000000003)]
+        [t1, -(p.W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.22000000000000003)]
     }
     /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
     /// Residual `f` only.
@@ -4527,21 +4123,19 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 0.1 * W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
-        let t11 = 3.0 - W * (t7 * t8 - t6 * t9);
-        let t12 = 1.0 / W * (phi1 - phi0);
+        let t11 = 3.0 - p.W * (t7 * t8 - t6 * t9);
+        let t12 = 1.0 / p.W * (phi1 - phi0);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4552,7 +4146,7 @@ pub mod reference {
                 + (-0.1406666666666667 + (t2 * t6 + t3 * t7)
                     + (t10 * ec13 + es13 * (t11 + 0.05 * t10))),
             -3.0
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (t11 * ec13 - es13 * (30.0 * t10 + 0.05 * t11))),
         )
     }
@@ -4566,14 +4160,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = 0.1 * W;
+        let t4 = 1.0 / p.W;
+        let t5 = 0.1 * p.W;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -4584,7 +4176,7 @@ pub mod reference {
         let t13 = t7 * t11 + t8 * t12;
         let t14 = t8 * t11 - t7 * t12;
         let t15 = x0 - (-0.1406666666666667 + t13);
-        let t16 = 3.0 - W * t14;
+        let t16 = 3.0 - p.W * t14;
         let t17 = t4 * (phi1 - phi0);
         let (ec18, es18) = ::stickslip::homogeneous::underdamped(
             0.05,
@@ -4597,14 +4189,14 @@ pub mod reference {
         let t22 = t4 * (-29.9975 * es18 - 0.05 * ec18);
         let t23 = t15 * t22;
         let t24 = t4 * (ec18 - t21);
-        let t25 = W * t13;
+        let t25 = p.W * t13;
         let t26 = t19 * t24;
         let t27 = t16 * t22;
         let t28 = -(t20 * t24);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t9 + (t15 * ec18 + es18 * t19)),
-                -3.0 + (W * t10 + (t16 * ec18 - es18 * t20)),
+                -3.0 + (p.W * t10 + (t16 * ec18 - es18 * t20)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec18 + t21,
@@ -4616,7 +4208,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t23 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -4630,21 +4222,19 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 0.1 * W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
-        let t11 = 3.0 - W * (t7 * t8 - t6 * t9);
-        let t12 = 1.0 / W * (phi1 - phi0);
+        let t11 = 3.0 - p.W * (t7 * t8 - t6 * t9);
+        let t12 = 1.0 / p.W * (phi1 - phi0);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4655,7 +4245,7 @@ pub mod reference {
                 + (-0.1406666666666667 + (t2 * t6 + t3 * t7)
                     + (t10 * ec13 + es13 * (t11 + 0.05 * t10))),
             -4.5
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (t11 * ec13 - es13 * (30.0 * t10 + 0.05 * t11))),
         )
     }
@@ -4669,14 +4259,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = 0.1 * W;
+        let t4 = 1.0 / p.W;
+        let t5 = 0.1 * p.W;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -4687,7 +4275,7 @@ pub mod reference {
         let t13 = t7 * t11 + t8 * t12;
         let t14 = t8 * t11 - t7 * t12;
         let t15 = x0 - (-0.1406666666666667 + t13);
-        let t16 = 3.0 - W * t14;
+        let t16 = 3.0 - p.W * t14;
         let t17 = t4 * (phi1 - phi0);
         let (ec18, es18) = ::stickslip::homogeneous::underdamped(
             0.05,
@@ -4700,14 +4288,14 @@ pub mod reference {
         let t22 = t4 * (-29.9975 * es18 - 0.05 * ec18);
         let t23 = t15 * t22;
         let t24 = t4 * (ec18 - t21);
-        let t25 = W * t13;
+        let t25 = p.W * t13;
         let t26 = t19 * t24;
         let t27 = t16 * t22;
         let t28 = -(t20 * t24);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t9 + (t15 * ec18 + es18 * t19)),
-                -4.5 + (W * t10 + (t16 * ec18 - es18 * t20)),
+                -4.5 + (p.W * t10 + (t16 * ec18 - es18 * t20)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec18 + t21,
@@ -4719,7 +4307,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t23 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -4733,32 +4321,30 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 0.1 * W;
+        let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
-        let t11 = 1.0 / W * (phi1 - phi0);
+        let t11 = 1.0 / p.W * (phi1 - phi0);
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t11,
         );
-        let t13 = 4.5 - W * (t7 * t8 - t6 * t9);
+        let t13 = 4.5 - p.W * (t7 * t8 - t6 * t9);
         ::stickslip::nalgebra::Vector2::new(
             -x1
                 + (-0.1406666666666667 + (t2 * t6 + t3 * t7)
                     + (t10 * ec12 + es12 * (0.05 * t10 + t13))),
             -3.0
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (ec12 * t13 - es12 * (30.0 * t10 + 0.05 * t13))),
         )
     }
@@ -4772,14 +4358,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = 0.1 * W;
+        let t4 = 1.0 / p.W;
+        let t5 = 0.1 * p.W;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -4800,8 +4384,8 @@ pub mod reference {
         let t19 = t4 * (-29.9975 * es17 - 0.05 * ec17);
         let t20 = t15 * t19;
         let t21 = t4 * (ec17 - t18);
-        let t22 = W * t13;
-        let t23 = 4.5 - W * t14;
+        let t22 = p.W * t13;
+        let t23 = 4.5 - p.W * t14;
         let t24 = 0.05 * t15 + t23;
         let t25 = 30.0 * t15 + 0.05 * t23;
         let t26 = t21 * t24;
@@ -4810,7 +4394,7 @@ pub mod reference {
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.1406666666666667 + t9 + (t15 * ec17 + es17 * t24)),
-                -3.0 + (W * t10 + (ec17 * t23 - es17 * t25)),
+                -3.0 + (p.W * t10 + (ec17 * t23 - es17 * t25)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t18,
@@ -4822,7 +4406,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t20 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -4836,21 +4420,19 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = W * 0.22000000000000003;
+        let t4 = p.W * 0.22000000000000003;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (-0.12266666666666669 + (t6 * t8 + t7 * t9));
-        let t12 = 4.5 - W * (t7 * t8 - t6 * t9);
+        let t12 = 4.5 - p.W * (t7 * t8 - t6 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
@@ -4861,7 +4443,7 @@ pub mod reference {
                 + (-0.12266666666666669 + (t2 * t6 + t3 * t7)
                     + (t11 * ec13 + es13 * (t12 + 0.11000000000000001 * t11))),
             -4.5
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (t12 * ec13 - es13 * (30.0 * t11 + 0.11000000000000001 * t12))),
         )
     }
@@ -4875,14 +4457,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = W * 0.22000000000000003;
+        let t4 = 1.0 / p.W;
+        let t5 = p.W * 0.22000000000000003;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -4894,7 +4474,7 @@ pub mod reference {
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (-0.12266666666666669 + t14);
-        let t17 = 4.5 - W * t15;
+        let t17 = 4.5 - p.W * t15;
         let (ec18, es18) = ::stickslip::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
@@ -4906,14 +4486,14 @@ pub mod reference {
         let t22 = t4 * (-29.9879 * es18 - 0.11000000000000001 * ec18);
         let t23 = t16 * t22;
         let t24 = t4 * (ec18 - t21);
-        let t25 = W * t14;
+        let t25 = p.W * t14;
         let t26 = t19 * t24;
         let t27 = t17 * t22;
         let t28 = -(t20 * t24);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (-0.12266666666666669 + t9 + (t16 * ec18 + es18 * t19)),
-                -4.5 + (W * t10 + (t17 * ec18 - es18 * t20)),
+                -4.5 + (p.W * t10 + (t17 * ec18 - es18 * t20)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec18 + t21,
@@ -4926,7 +4506,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t23 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -4940,21 +4520,19 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = W * 0.18;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
-        let t12 = 1.5 - W * (t7 * t8 - t6 * t9);
+        let t12 = 1.5 - p.W * (t7 * t8 - t6 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -4965,7 +4543,7 @@ pub mod reference {
                 + (0.12866666666666668 + (t2 * t6 + t3 * t7)
                     + (t11 * ec13 + es13 * (t12 + 0.09 * t11))),
             -1.5
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (t12 * ec13 - es13 * (30.0 * t11 + 0.09 * t12))),
         )
     }
@@ -4979,14 +4557,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = W * 0.18;
+        let t4 = 1.0 / p.W;
+        let t5 = p.W * 0.18;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -4998,7 +4574,7 @@ pub mod reference {
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
-        let t17 = 1.5 - W * t15;
+        let t17 = 1.5 - p.W * t15;
         let (ec18, es18) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -5010,14 +4586,14 @@ pub mod reference {
         let t22 = t4 * (-29.9919 * es18 - 0.09 * ec18);
         let t23 = t16 * t22;
         let t24 = t4 * (ec18 - t21);
-        let t25 = W * t14;
+        let t25 = p.W * t14;
         let t26 = t19 * t24;
         let t27 = t17 * t22;
         let t28 = -(t20 * t24);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t9 + (t16 * ec18 + es18 * t19)),
-                -1.5 + (W * t10 + (t17 * ec18 - es18 * t20)),
+                -1.5 + (p.W * t10 + (t17 * ec18 - es18 * t20)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec18 + t21,
@@ -5029,7 +4605,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t23 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -5043,21 +4619,19 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = W * 0.18;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
-        let t12 = 1.5 - W * (t7 * t8 - t6 * t9);
+        let t12 = 1.5 - p.W * (t7 * t8 - t6 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -5068,7 +4642,7 @@ pub mod reference {
                 + (0.12866666666666668 + (t2 * t6 + t3 * t7)
                     + (t11 * ec13 + es13 * (t12 + 0.09 * t11))),
             -3.0
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (t12 * ec13 - es13 * (30.0 * t11 + 0.09 * t12))),
         )
     }
@@ -5082,14 +4656,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = W * 0.18;
+        let t4 = 1.0 / p.W;
+        let t5 = p.W * 0.18;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -5101,7 +4673,7 @@ pub mod reference {
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
-        let t17 = 1.5 - W * t15;
+        let t17 = 1.5 - p.W * t15;
         let (ec18, es18) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
@@ -5113,14 +4685,14 @@ pub mod reference {
         let t22 = t4 * (-29.9919 * es18 - 0.09 * ec18);
         let t23 = t16 * t22;
         let t24 = t4 * (ec18 - t21);
-        let t25 = W * t14;
+        let t25 = p.W * t14;
         let t26 = t19 * t24;
         let t27 = t17 * t22;
         let t28 = -(t20 * t24);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t9 + (t16 * ec18 + es18 * t19)),
-                -3.0 + (W * t10 + (t17 * ec18 - es18 * t20)),
+                -3.0 + (p.W * t10 + (t17 * ec18 - es18 * t20)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec18 + t21,
@@ -5132,7 +4704,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t23 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -5146,32 +4718,30 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = W * 0.18;
+        let t4 = p.W * 0.18;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
         let t8 = phi0.cos();
         let t9 = phi0.sin();
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
         let (ec12, es12) = ::stickslip::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t10,
         );
-        let t13 = 3.0 - W * (t7 * t8 - t6 * t9);
+        let t13 = 3.0 - p.W * (t7 * t8 - t6 * t9);
         ::stickslip::nalgebra::Vector2::new(
             -x1
                 + (0.12866666666666668 + (t2 * t6 + t3 * t7)
                     + (t11 * ec12 + es12 * (0.09 * t11 + t13))),
             -1.5
-                + (W * (t2 * t7 - t3 * t6)
+                + (p.W * (t2 * t7 - t3 * t6)
                     + (ec12 * t13 - es12 * (30.0 * t11 + 0.09 * t13))),
         )
     }
@@ -5185,14 +4755,12 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
         let t2 = phi1.cos();
         let t3 = phi1.sin();
-        let t4 = 1.0 / W;
-        let t5 = W * 0.18;
+        let t4 = 1.0 / p.W;
+        let t5 = p.W * 0.18;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
         let t7 = t0 * t1 * t6;
         let t8 = t6 * (t0 * t5);
@@ -5213,8 +4781,8 @@ pub mod reference {
         let t19 = t4 * (-29.9919 * es17 - 0.09 * ec17);
         let t20 = t16 * t19;
         let t21 = t4 * (ec17 - t18);
-        let t22 = W * t14;
-        let t23 = 3.0 - W * t15;
+        let t22 = p.W * t14;
+        let t23 = 3.0 - p.W * t15;
         let t24 = 0.09 * t16 + t23;
         let t25 = 30.0 * t16 + 0.09 * t23;
         let t26 = t21 * t24;
@@ -5223,7 +4791,7 @@ pub mod reference {
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.12866666666666668 + t9 + (t16 * ec17 + es17 * t24)),
-                -1.5 + (W * t10 + (ec17 * t23 - es17 * t25)),
+                -1.5 + (p.W * t10 + (ec17 * t23 - es17 * t25)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec17 + t18,
@@ -5235,7 +4803,7 @@ pub mod reference {
                 -1.0,
                 t10 + (t20 + t26),
                 0.0,
-                -(W * t9) + (t27 + t28),
+                -(p.W * t9) + (t27 + t28),
             ),
         }
     }
@@ -5249,11 +4817,9 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
-        let t2 = W * 0.30000000000000004;
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
+        let t2 = p.W * 0.30000000000000004;
         let t3 = 1.0 / (t1.powi(2) + t2.powi(2));
         let t4 = t0 * t1 * t3;
         let t5 = t3 * (t0 * t2);
@@ -5261,9 +4827,9 @@ pub mod reference {
         let t7 = phi1.sin();
         let t8 = phi0.cos();
         let t9 = phi0.sin();
-        let t10 = 1.0 / W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.13466666666666668 + (t4 * t8 + t5 * t9));
-        let t12 = 1.5 - W * (t5 * t8 - t4 * t9);
+        let t12 = 1.5 - p.W * (t5 * t8 - t4 * t9);
         let (ec13, es13) = ::stickslip::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
@@ -5274,7 +4840,7 @@ pub mod reference {
                 + (0.13466666666666668 + (t4 * t6 + t5 * t7)
                     + (t11 * ec13 + es13 * (t12 + 0.15000000000000002 * t11))),
             -1.5
-                + (W * (t5 * t6 - t4 * t7)
+                + (p.W * (t5 * t6 - t4 * t7)
                     + (t12 * ec13 - es13 * (30.0 * t11 + 0.15000000000000002 * t12))),
         )
     }
@@ -5288,11 +4854,9 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 30.0 - W.powi(2);
-        let t2 = W * 0.30000000000000004;
+        let t0 = p.Q0 * 0.2;
+        let t1 = 30.0 - p.W.powi(2);
+        let t2 = p.W * 0.30000000000000004;
         let t3 = 1.0 / (t1.powi(2) + t2.powi(2));
         let t4 = t0 * t1 * t3;
         let t5 = t3 * (t0 * t2);
@@ -5300,14 +4864,14 @@ pub mod reference {
         let t7 = phi1.sin();
         let t8 = t4 * t6 + t5 * t7;
         let t9 = t5 * t6 - t4 * t7;
-        let t10 = 1.0 / W;
+        let t10 = 1.0 / p.W;
         let t11 = phi0.cos();
         let t12 = phi0.sin();
         let t13 = t10 * (phi1 - phi0);
         let t14 = t4 * t11 + t5 * t12;
         let t15 = t5 * t11 - t4 * t12;
         let t16 = x0 - (0.13466666666666668 + t14);
-        let t17 = 1.5 - W * t15;
+        let t17 = 1.5 - p.W * t15;
         let (ec18, es18) = ::stickslip::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
@@ -5319,14 +4883,14 @@ pub mod reference {
         let t22 = t10 * (-29.9775 * es18 - 0.15000000000000002 * ec18);
         let t23 = t16 * t22;
         let t24 = t10 * (ec18 - t21);
-        let t25 = W * t14;
+        let t25 = p.W * t14;
         let t26 = t19 * t24;
         let t27 = t17 * t22;
         let t28 = -(t20 * t24);
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
                 -x1 + (0.13466666666666668 + t8 + (t16 * ec18 + es18 * t19)),
-                -1.5 + (W * t9 + (t17 * ec18 - es18 * t20)),
+                -1.5 + (p.W * t9 + (t17 * ec18 - es18 * t20)),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(
                 ec18 + t21,
@@ -5339,7 +4903,7 @@ pub mod reference {
                 -1.0,
                 t9 + (t23 + t26),
                 0.0,
-                -(W * t8) + (t27 + t28),
+                -(p.W * t8) + (t27 + t28),
             ),
         }
     }
@@ -5353,11 +4917,9 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / W * (phi1 - phi0))),
-            Q0 * 0.2 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
+            p.Q0 * 0.2 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
@@ -5370,10 +4932,8 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 1.0 / W;
+        let t0 = p.Q0 * 0.2;
+        let t1 = 1.0 / p.W;
         let t2 = 3.0 * t1;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
@@ -5399,11 +4959,9 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
-        let Q0 = p.Q0;
-        let W = p.W;
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / W * (phi1 - phi0))),
-            4.9 + (Q0 * 0.2 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
+            4.9 + (p.Q0 * 0.2 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -5416,10 +4974,8 @@ pub mod reference {
         x1: f64,
         phi1: f64,
     ) -> ::stickslip::MappingEval {
-        let Q0 = p.Q0;
-        let W = p.W;
-        let t0 = Q0 * 0.2;
-        let t1 = 1.0 / W;
+        let t0 = p.Q0 * 0.2;
+        let t1 = 1.0 / p.W;
         let t2 = 3.0 * t1;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
@@ -5444,21 +5000,18 @@ pub mod reference {
     /// The oscillator: `x'' + 2 d x' + c x = A0 cos(W t) - f(x')` (Eq. 5).
     #[inline]
     pub fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-        let Q0 = p.Q0;
-        let W = p.W;
         ::stickslip::Oscillator {
             mass: 5.0,
             damping: 0.1,
             stiffness: 30.0,
-            amplitude: Q0 * 0.2,
-            frequency: W,
+            amplitude: p.Q0 * 0.2,
+            frequency: p.W,
         }
     }
     /// Forces on the stick boundary Sigma1 at `(x, W t)` (Eqs. 2, 24–25).
     #[inline]
     pub fn stick_forces(p: &Params, x: f64, phi: f64) -> ::stickslip::StickForces {
-        let Q0 = p.Q0;
-        let t0 = -(30.0 * x) + (-0.6000000000000001 + Q0 * 0.2 * phi.cos());
+        let t0 = -(30.0 * x) + (-0.6000000000000001 + p.Q0 * 0.2 * phi.cos());
         ::stickslip::StickForces {
             non_friction: t0,
             input_above: -3.9200000000000004 + t0,

@@ -1,0 +1,21 @@
+// Two scenes whose names are equal after NFC normalisation.
+stickslip::model! {
+    model bad {
+        param m = 1.0, > 0;
+        param d = 0.05, >= 0;
+        param c = 1.0, > 0;
+        param W = 1.0, > 0;
+        param mu = 0.3;
+        param k = 0.1;
+        oscillator { mass: m, damping: d, stiffness: c, forcing: 0.5, frequency: W }
+        boundary Sigma1: v = 1.0, stick 0.4;
+        boundary Sigma2: v = 2.0;
+        domain 1: Sigma1 < v < Sigma2 => mu + k * (v - 1.0);
+        domain 2: v > Sigma2 => mu + k;
+        domain 3: v < Sigma1 => -mu;
+        scene é { free: W; }
+        scene é { free: mu; }
+    }
+}
+
+fn main() {}
