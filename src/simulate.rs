@@ -210,6 +210,11 @@ impl<M: Model> Simulator<M> {
         self.velocities[k]
     }
 
+    /// The stick boundary and its static bound `as`, if the model has one.
+    pub fn stick(&self) -> Option<(usize, f64)> {
+        self.stick
+    }
+
     /// `(x, v)` at `phase` of the segment started at `seg`.
     #[inline]
     pub fn state_at(&self, seg: &Segment, phase: f64) -> (f64, f64) {
