@@ -73,6 +73,10 @@ pub enum Report {
     /// condition: it is not a motion (the command exits non-zero).
     #[serde(rename = "inadmissible")]
     Inadmissible(MotionReport),
+    /// A periodic motion with an eigenvalue `+1` to round-off: one member of
+    /// a continuum of neutrally stable motions (the start decides which).
+    #[serde(rename = "neutral_family")]
+    NeutralFamily(MotionReport),
     /// No boundary contact (certified).
     #[serde(rename = "NM")]
     NoMotion(NoMotionReport),
@@ -304,7 +308,11 @@ impl Report {
             stability: motion.stability,
         };
         if report.admissible {
-            Report::Periodic(report)
+            if motion.stability.is_some_and(|s| s.has_unit_eigenvalue()) {
+                Report::NeutralFamily(report)
+            } else {
+                Report::Periodic(report)
+            }
         } else {
             Report::Inadmissible(report)
         }
@@ -347,14 +355,20 @@ impl Report {
     pub fn is_motion(&self) -> bool {
         matches!(
             self,
-            Report::Periodic(_) | Report::NoMotion(_) | Report::Stick(_)
+            Report::Periodic(_)
+                | Report::NeutralFamily(_)
+                | Report::NoMotion(_)
+                | Report::Stick(_)
         )
     }
 
     /// For a report that is not a motion, the one-line reason.
     pub fn failure(&self) -> Option<String> {
         match self {
-            Report::Periodic(_) | Report::NoMotion(_) | Report::Stick(_) => None,
+            Report::Periodic(_)
+            | Report::NeutralFamily(_)
+            | Report::NoMotion(_)
+            | Report::Stick(_) => None,
             Report::Inadmissible(r) => {
                 let first = r.violations.first().map_or_else(String::new, |v| {
                     let mapping = r.points.get(v.segment).map_or("?", |p| p.mapping);
@@ -506,6 +520,16 @@ impl fmt::Display for Report {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Report::Periodic(r) | Report::Inadmissible(r) => write_motion(f, r),
+            Report::NeutralFamily(r) => {
+                write_motion(f, r)?;
+                writeln!(
+                    f,
+                    "neutral family: DP has the eigenvalue 1 (to round-off): this motion is one \
+                     of a continuum of neutrally stable periodic motions; other starts settle on \
+                     other members (Csernák, Stépán & Shaw 2007: the undamped Coulomb oscillator \
+                     at W = sqrt(c) / (2 n))"
+                )
+            }
             Report::NoMotion(r) => writeln!(
                 f,
                 "NM (no motion touches a boundary; model {}): the steady motion stays in domain {} \
