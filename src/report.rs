@@ -355,10 +355,7 @@ impl Report {
     pub fn is_motion(&self) -> bool {
         matches!(
             self,
-            Report::Periodic(_)
-                | Report::NeutralFamily(_)
-                | Report::NoMotion(_)
-                | Report::Stick(_)
+            Report::Periodic(_) | Report::NeutralFamily(_) | Report::NoMotion(_) | Report::Stick(_)
         )
     }
 

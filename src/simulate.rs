@@ -492,14 +492,16 @@ impl<M: Model> Simulator<M> {
                     which,
                     kind: RootKind::Crossing,
                 });
-                let root = root.or_else(|| first_root(
-                    &probe,
-                    &bound,
-                    seg.search_from,
-                    phase_limit,
-                    std::f64::consts::FRAC_PI_4,
-                    self.opts.graze_tol,
-                ));
+                let root = root.or_else(|| {
+                    first_root(
+                        &probe,
+                        &bound,
+                        seg.search_from,
+                        phase_limit,
+                        std::f64::consts::FRAC_PI_4,
+                        self.opts.graze_tol,
+                    )
+                });
                 let Some(root) = root else {
                     return Ok(None);
                 };

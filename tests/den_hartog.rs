@@ -329,7 +329,8 @@ fn orbit_and_simulate_reproduce_den_hartog_inside_the_non_stop_boundary() {
                 for mus_ratio in [1.0, 1.5] {
                     let (p, o) = params(beta, zeta, frac * rb, mus_ratio);
                     let n = den_hartog(o).expect("inside the boundary");
-                    let how = format!("β = {beta}, ζ = {zeta}, r = {frac} r*, mus/muk = {mus_ratio}");
+                    let how =
+                        format!("β = {beta}, ζ = {zeta}, r = {frac} r*, mus/muk = {mus_ratio}");
                     if n.min_v < 0.0 {
                         // The velocity changes sign inside the half period: not
                         // Den Hartog's motion (low β), and no motion of this structure.
@@ -383,7 +384,11 @@ fn beyond_the_non_stop_boundary_the_motion_has_stops() {
             let how = format!("β = {beta}, ζ = {zeta}, r = 1.3 r*");
             match simulate(p) {
                 Ok(Attractor::Periodic(m)) => {
-                    assert!(m.structure.has_stick(Coulomb::INFO), "{how}: {}", m.structure.notation(Coulomb::INFO))
+                    assert!(
+                        m.structure.has_stick(Coulomb::INFO),
+                        "{how}: {}",
+                        m.structure.notation(Coulomb::INFO)
+                    )
                 }
                 other => panic!("simulate {how}: {other:?}"),
             }
