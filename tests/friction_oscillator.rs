@@ -14,7 +14,8 @@ use stickslip::simulate::{EventKind, Location, SimOptions, Simulator};
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const PI: f64 = std::f64::consts::PI;
 
-fn coulomb(m: f64, d: f64, c: f64, v: f64, mus: f64, muk: f64, q0: f64, w: f64) -> Params {
+/// `coulomb` at `[m, d, c, V, mus, muk, Q0, W]`, `g = 9.8`.
+fn coulomb([m, d, c, v, mus, muk, q0, w]: [f64; 8]) -> Params {
     Params {
         m,
         d,
@@ -44,7 +45,7 @@ fn a_forcing_below_the_static_bound_sticks_forever_and_is_reported_so() {
             for (factor, sticks) in [(0.5, true), (0.999, true), (1.001, false), (1.5, false)] {
                 let (m, muk) = (2.0, 0.4);
                 let a_s = ratio * muk * 9.8;
-                let p = coulomb(m, 0.1, c, 0.0, ratio * muk, muk, factor * a_s * m, w);
+                let p = coulomb([m, 0.1, c, 0.0, ratio * muk, muk, factor * a_s * m, w]);
                 let how = format!("c = {c}, W = {w}, mus/muk = {ratio}, A0 = {factor} as");
                 match find(p, 0.0, 0.0, 0.0) {
                     Ok(Attractor::Stick(s)) => {
@@ -67,7 +68,7 @@ fn a_stick_reached_after_a_transient_is_permanent_exactly_when_the_bound_says() 
     let mut seen = 0;
     for x0 in [0.5, 0.9, 2.0, -1.5] {
         for v0 in [0.0, 1.0, -2.0] {
-            let p = coulomb(1.0, 0.05, 1.0, 0.0, 2.0 / 9.8, 2.0 / 9.8, 1.0, 0.5);
+            let p = coulomb([1.0, 0.05, 1.0, 0.0, 2.0 / 9.8, 2.0 / 9.8, 1.0, 0.5]);
             match find(p, x0, v0, 0.3) {
                 Ok(Attractor::Stick(s)) => {
                     seen += 1;
@@ -129,7 +130,7 @@ fn with_a_moving_belt_no_stick_is_permanent() {
     // x = x_i + V (t − t_i) stretches the spring without bound: every stick
     // ends, even with a forcing far below the static bound.
     for v in [0.3, -0.5] {
-        let p = coulomb(1.0, 0.05, 1.0, v, 0.6, 0.4, 0.1, 0.7);
+        let p = coulomb([1.0, 0.05, 1.0, v, 0.6, 0.4, 0.1, 0.7]);
         let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
         let seg = sim.start(0.0, v, 0.0).unwrap();
         assert_eq!(seg.location, Location::Stick);
@@ -158,7 +159,7 @@ fn the_undamped_oscillator_at_half_integer_ratios_has_a_neutral_family() {
         let w = c.sqrt() / (2.0 * n);
         let x0 = a0 / (c - w * w);
         let muk = 0.005 * a0 / 9.8;
-        let p = coulomb(m, 0.0, c, 0.0, muk, muk, q0, w);
+        let p = coulomb([m, 0.0, c, 0.0, muk, muk, q0, w]);
         let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
         let mut members = Vec::new();
         for delta in [0.0, 0.02 * x0, -0.02 * x0] {
@@ -218,7 +219,7 @@ fn the_unforced_belt_stick_slip_cycle_has_den_hartogs_closed_form_durations() {
         let t_stick = 2.0 * u0 / v;
         let x_end = a_s / c;
         let w = 1.3; // only sets the phase unit: phase = W t
-        let p = coulomb(m, 0.0, c, v, mus, muk, 0.0, w);
+        let p = coulomb([m, 0.0, c, v, mus, muk, 0.0, w]);
         let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
         let seg = sim.start(0.0, v, 0.0).unwrap();
         let mut events = Vec::new();
