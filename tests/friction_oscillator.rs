@@ -10,6 +10,7 @@ use stickslip::attractor::{self, Attractor, AttractorOptions};
 use stickslip::models::coulomb::{Coulomb, Params};
 use stickslip::report::Report;
 use stickslip::simulate::{EventKind, Location, SimOptions, Simulator};
+use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const PI: f64 = std::f64::consts::PI;
@@ -256,5 +257,37 @@ fn the_unforced_belt_stick_slip_cycle_has_den_hartogs_closed_form_durations() {
         for e in &onsets {
             assert!((e.x - (ak / c - u0)).abs() < 1e-10, "{how}: {e:?}");
         }
+    }
+}
+
+/// The example: with `mus = muk` a stick that ends where `|Fnf| = as`
+/// leaves with zero acceleration, and the velocity's rounding near that
+/// tangent departure looked like a return to the belt speed: a stick with
+/// `|Fnf| > as` followed, "ended" when `Fnf` came back to the bound, and the
+/// search never settled. The stable non-stop motion is the same as at
+/// `mus = 1.41` (the static bound does not enter a motion without stops).
+#[test]
+fn static_equal_to_kinetic_friction_finds_the_non_stop_motion() {
+    let muk = 1.401_268_089_790_084_7;
+    let w = 4.381_780_460_041_329_5;
+    let mut found = Vec::new();
+    for mus in [muk, 1.41] {
+        let p = Params {
+            g: 9.8,
+            ..coulomb([2.5, 0.0, 30.0, 0.0, mus, muk, 70.0, w])
+        };
+        match find(p, 0.0, 0.0, 0.0) {
+            Ok(Attractor::Periodic(m)) => {
+                assert_eq!(m.structure.notation(Coulomb::INFO), "P_{1_11 2_11}");
+                assert!(m.is_admissible());
+                let lam = m.stability.expect("stability").largest_modulus;
+                assert!((lam - 0.508).abs() < 1e-3, "{lam}");
+                found.push(m.points);
+            }
+            other => panic!("mus = {mus}: {other:?}"),
+        }
+    }
+    for (a, b) in found[0].iter().zip(&found[1]) {
+        assert!((a.phase - b.phase).abs() < 1e-10 && (a.x - b.x).abs() < 1e-10);
     }
 }
