@@ -45,6 +45,22 @@ pub struct NoMotion {
     pub certified_at: f64,
 }
 
+/// A stick that lasts forever, proved: the mass rests on the belt and the
+/// non-friction force never reaches the static bound.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PermanentStick {
+    /// Where the mass rests.
+    pub x: f64,
+    /// Its velocity (the belt's).
+    pub v: f64,
+    /// Phase `W t` at which the stick began.
+    pub since: f64,
+    /// The largest `|Fnf|` over a forcing period, `|A0| + |2 d V + c x|`.
+    pub max_force: f64,
+    /// The static friction bound `as` it stays within.
+    pub static_bound: f64,
+}
+
 /// What a simulation settles to.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Attractor {
@@ -52,6 +68,34 @@ pub enum Attractor {
     Periodic(Motion),
     /// No boundary contact.
     NoMotion(NoMotion),
+    /// A stick that never ends.
+    Stick(PermanentStick),
+}
+
+/// Whether the stick segment `seg` lasts forever. On the stick boundary
+/// `Fnf = A0 cos(W t) − 2 d V − c x` with `x = x_i + V (t − t_i)`: if the mass
+/// moves (`V ≠ 0`) and the spring pulls (`c ≠ 0`), `|c x|` grows without
+/// bound and every stick ends; otherwise `Fnf` is periodic, its largest
+/// modulus is exactly `|A0| + |2 d V + c x|`, and the stick is permanent iff
+/// that is at most `as` (a touch of the bound does not end a stick).
+pub fn permanent_stick<M: Model>(sim: &Simulator<M>, seg: &Segment) -> Option<PermanentStick> {
+    if seg.location != Location::Stick {
+        return None;
+    }
+    let (_, bound) = sim.stick()?;
+    let osc = sim.oscillator();
+    if seg.v != 0.0 && osc.stiffness != 0.0 {
+        return None;
+    }
+    let offset = 2.0 * osc.damping * seg.v + osc.stiffness * seg.x;
+    let max_force = osc.amplitude.abs() + offset.abs();
+    (max_force <= bound).then_some(PermanentStick {
+        x: seg.x,
+        v: seg.v,
+        since: seg.phase,
+        max_force,
+        static_bound: bound,
+    })
 }
 
 /// The mapping that the segment between two events follows.
@@ -226,6 +270,9 @@ pub fn find<M: Model>(
         })?;
         if events.len() > keep {
             events.drain(..events.len() - keep);
+        }
+        if let Some(stick) = permanent_stick(sim, &seg) {
+            return Ok(Attractor::Stick(stick));
         }
         if count == 0 {
             if let Location::Domain(j) = seg.location {

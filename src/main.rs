@@ -559,6 +559,20 @@ impl ModelVisitor for Simulate {
                 };
                 return finish(&report, history, title, &self.output, outcome);
             }
+            Ok(Attractor::Stick(stick)) => {
+                let report = Report::of_stick::<M>(&stick);
+                let title = format!(
+                    "{}: permanent stick at x = {:.6} (one forcing period; {set})",
+                    info.name, stick.x
+                );
+                let history = || {
+                    let from = stick.since.max(phase);
+                    let seg = sim.run(start, from, |_| {}).map_err(|e| e.to_string())?;
+                    History::simulated(&sim, seg, from, from + TAU, SAMPLES_PER_PERIOD)
+                        .map_err(|e| e.to_string())
+                };
+                return finish(&report, history, title, &self.output, outcome);
+            }
             Err(OrbitError::NotConverged(t)) => {
                 let report = Report::of_termination::<M>(&t, None);
                 return finish(

@@ -61,6 +61,9 @@ pub const MAX_PERIODS: u32 = 600;
 /// The label of "no motion touches a boundary".
 pub const NO_MOTION: &str = "NM";
 
+/// The label of a permanent stick in a map.
+pub const STICK: &str = "stick";
+
 /// Why an axis specification was rejected.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum AxisError {
@@ -604,6 +607,7 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
     };
     let mut found: Vec<Motion> = Vec::new();
     let mut no_motion = false;
+    let mut stick = false;
     let mut problems: Vec<String> = Vec::new();
     for (k, (x0, v0, phase0)) in starts(&sim).into_iter().enumerate() {
         let outcome = sim
@@ -617,12 +621,16 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
                 }
             }
             Ok(Attractor::NoMotion(_)) => no_motion = true,
+            Ok(Attractor::Stick(_)) => stick = true,
             Err(e) => problems.push(format!("start {}: {}", k + 1, failure::<M>(&e))),
         }
     }
     let mut motions: Vec<String> = found.iter().map(motion_label::<M>).collect();
     if no_motion {
         motions.push(NO_MOTION.to_string());
+    }
+    if stick {
+        motions.push(STICK.to_string());
     }
     motions.sort();
     let status = if problems.is_empty() {

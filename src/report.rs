@@ -12,7 +12,7 @@ use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
 
 use crate::admissible::Violation;
-use crate::attractor::NoMotion;
+use crate::attractor::{NoMotion, PermanentStick};
 use crate::model::{MappingKind, Model};
 use crate::motion::Motion;
 use crate::param::ParamSet;
@@ -73,9 +73,16 @@ pub enum Report {
     /// condition: it is not a motion (the command exits non-zero).
     #[serde(rename = "inadmissible")]
     Inadmissible(MotionReport),
+    /// A periodic motion with an eigenvalue `+1` to round-off: one member of
+    /// a continuum of neutrally stable motions (the start decides which).
+    #[serde(rename = "neutral_family")]
+    NeutralFamily(MotionReport),
     /// No boundary contact (certified).
     #[serde(rename = "NM")]
     NoMotion(NoMotionReport),
+    /// The mass sticks forever (certified: `|Fnf|` never reaches `as`).
+    #[serde(rename = "stick")]
+    Stick(StickReport),
     /// Newton did not converge (the command exits non-zero).
     #[serde(rename = "not_converged")]
     NotConverged(NotConvergedReport),
@@ -182,6 +189,24 @@ pub struct NoMotionReport {
     pub certified_at: f64,
 }
 
+/// A permanent stick.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StickReport {
+    /// Where the mass rests.
+    pub x: f64,
+    /// Its velocity (the belt speed).
+    pub v: f64,
+    /// Phase `W t` at which the stick began.
+    pub since: f64,
+    /// The largest `|Fnf|` over a forcing period.
+    pub max_force: f64,
+    /// The static friction bound `as`.
+    pub static_bound: f64,
+    /// The model's name (text output only).
+    #[serde(skip)]
+    pub model: &'static str,
+}
+
 /// Newton failed.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct NotConvergedReport {
@@ -283,7 +308,11 @@ impl Report {
             stability: motion.stability,
         };
         if report.admissible {
-            Report::Periodic(report)
+            if motion.stability.is_some_and(|s| s.has_unit_eigenvalue()) {
+                Report::NeutralFamily(report)
+            } else {
+                Report::Periodic(report)
+            }
         } else {
             Report::Inadmissible(report)
         }
@@ -300,6 +329,18 @@ impl Report {
         })
     }
 
+    /// The report of a permanent stick.
+    pub fn of_stick<M: Model>(s: &PermanentStick) -> Self {
+        Report::Stick(StickReport {
+            x: s.x,
+            v: s.v,
+            since: s.since,
+            max_force: s.max_force,
+            static_bound: s.static_bound,
+            model: M::INFO.name,
+        })
+    }
+
     /// The report of a Newton failure known only by its termination.
     pub fn of_termination<M: Model>(t: &Termination, structure: Option<String>) -> Self {
         let (newton, reason) = newton_of(t, || None);
@@ -312,13 +353,19 @@ impl Report {
 
     /// A periodic motion or a certified NM (the command succeeds).
     pub fn is_motion(&self) -> bool {
-        matches!(self, Report::Periodic(_) | Report::NoMotion(_))
+        matches!(
+            self,
+            Report::Periodic(_) | Report::NeutralFamily(_) | Report::NoMotion(_) | Report::Stick(_)
+        )
     }
 
     /// For a report that is not a motion, the one-line reason.
     pub fn failure(&self) -> Option<String> {
         match self {
-            Report::Periodic(_) | Report::NoMotion(_) => None,
+            Report::Periodic(_)
+            | Report::NeutralFamily(_)
+            | Report::NoMotion(_)
+            | Report::Stick(_) => None,
             Report::Inadmissible(r) => {
                 let first = r.violations.first().map_or_else(String::new, |v| {
                     let mapping = r.points.get(v.segment).map_or("?", |p| p.mapping);
@@ -470,11 +517,27 @@ impl fmt::Display for Report {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Report::Periodic(r) | Report::Inadmissible(r) => write_motion(f, r),
+            Report::NeutralFamily(r) => {
+                write_motion(f, r)?;
+                writeln!(
+                    f,
+                    "neutral family: DP has the eigenvalue 1 (to round-off): this motion is one \
+                     of a continuum of neutrally stable periodic motions; other starts settle on \
+                     other members (Csernák, Stépán & Shaw 2007: the undamped Coulomb oscillator \
+                     at W = sqrt(c) / (2 n))"
+                )
+            }
             Report::NoMotion(r) => writeln!(
                 f,
                 "NM (no motion touches a boundary; model {}): the steady motion stays in domain {} \
                  with {:.6} <= v <= {:.6} (certified by a bound on the transient at W t = {:.6})",
                 r.model, r.domain, r.min_v, r.max_v, r.certified_at
+            ),
+            Report::Stick(r) => writeln!(
+                f,
+                "permanent stick (model {}): the mass sticks from W t = {:.6} on at x = {:.12}, \
+                 v = {}; the non-friction force never exceeds {:.6} <= as = {:.6}",
+                r.model, r.since, r.x, r.v, r.max_force, r.static_bound
             ),
             Report::NotConverged(r) => {
                 writeln!(

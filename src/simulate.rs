@@ -210,6 +210,11 @@ impl<M: Model> Simulator<M> {
         self.velocities[k]
     }
 
+    /// The stick boundary and its static bound `as`, if the model has one.
+    pub fn stick(&self) -> Option<(usize, f64)> {
+        self.stick
+    }
+
     /// `(x, v)` at `phase` of the segment started at `seg`.
     #[inline]
     pub fn state_at(&self, seg: &Segment, phase: f64) -> (f64, f64) {
@@ -254,11 +259,14 @@ impl<M: Model> Simulator<M> {
             Some(k) => {
                 let (above, below) = (k + 1, k);
                 match self.stick {
-                    Some((s, _)) if s == k => {
+                    // At rest relative to the belt static friction holds the
+                    // mass while `|Fnf| ≤ as` (SPEC §3: a stick needs `|Fnf| = as`
+                    // to end); beyond that it slips to the side `Fnf` points to.
+                    Some((s, bound_s)) if s == k => {
                         let f = M::stick_forces(&self.p, x, phase).expect("stick boundary");
-                        if f.input_above > 0.0 {
+                        if f.non_friction > bound_s {
                             Location::Domain(above)
-                        } else if f.input_below < 0.0 {
+                        } else if f.non_friction < -bound_s {
                             Location::Domain(below)
                         } else {
                             Location::Stick
@@ -332,15 +340,23 @@ impl<M: Model> Simulator<M> {
                 // A tangent departure (zero acceleration on leaving, as after a
                 // stick whose static bound equals the kinetic level) touches the
                 // boundary it leaves: a graze there within 1e-6 is the departure too.
+                // After a tangent departure `v − V_b ≈ a' τ²/2` is below the
+                // rounding of the closed form for τ up to about sqrt(ε |v| / |a'|):
+                // the noise can change its sign there. Such a root is no arrival:
+                // an arrival on the upper boundary needs `a ≥ 0`, on the lower one
+                // `a ≤ 0`, and the acceleration there points back into the domain.
                 let departure = |r: &crate::crossing::Root| {
                     let k = if r.which == 0 { info.lower } else { info.upper };
+                    let left = k.is_some_and(|k| self.velocities[k] == seg.v);
                     let window = if r.kind == RootKind::Graze {
                         1e-6
                     } else {
                         1e-9
                     };
-                    k.is_some_and(|k| self.velocities[k] == seg.v)
-                        && r.phase - seg.phase <= window * seg.phase.abs().max(1.0)
+                    let a = probe(r.phase).dh;
+                    let receding = r.kind == RootKind::Crossing
+                        && if r.which == 0 { a > 0.0 } else { a < 0.0 };
+                    left && (receding || r.phase - seg.phase <= window * seg.phase.abs().max(1.0))
                 };
                 let steps = std::f64::consts::TAU / step;
                 if steps.is_nan() || steps > MAX_STEPS_PER_PERIOD {
@@ -456,14 +472,36 @@ impl<M: Model> Simulator<M> {
                     }
                 };
                 let bound = |_phi: f64, _delta: f64, _p: &Probe| a0.abs();
-                let root = first_root(
-                    &probe,
-                    &bound,
-                    seg.search_from,
-                    phase_limit,
-                    std::f64::consts::FRAC_PI_4,
-                    self.opts.graze_tol,
-                );
+                // A stick holds only while `|Fnf| < as`. Where a stick starts
+                // with `Fnf` at or beyond a bound and moving outwards (a flow that
+                // arrives where `|Fnf|` is the kinetic level and `as = ak`), or
+                // beyond it by rounding, it ends at once; the root search below
+                // would instead take the return of `Fnf` to the bound for the end.
+                let p0 = probe(seg.search_from);
+                let exit = if seg.search_from > phase_limit {
+                    None
+                } else if p0.h[0] > 0.0 || (p0.h[0] == 0.0 && p0.dh > 0.0) {
+                    Some(0)
+                } else if p0.h[1] < 0.0 || (p0.h[1] == 0.0 && p0.dh < 0.0) {
+                    Some(1)
+                } else {
+                    None
+                };
+                let root = exit.map(|which| crate::crossing::Root {
+                    phase: seg.search_from,
+                    which,
+                    kind: RootKind::Crossing,
+                });
+                let root = root.or_else(|| {
+                    first_root(
+                        &probe,
+                        &bound,
+                        seg.search_from,
+                        phase_limit,
+                        std::f64::consts::FRAC_PI_4,
+                        self.opts.graze_tol,
+                    )
+                });
                 let Some(root) = root else {
                     return Ok(None);
                 };

@@ -32,6 +32,10 @@ pub struct Stability {
     pub has_zero_eigenvalue: bool,
 }
 
+/// How close to `+1` an eigenvalue must be to count as exactly `+1` (DP is
+/// computed from closed forms, to about 1e-12).
+pub const UNIT_TOL: f64 = 1e-9;
+
 /// How close to the unit circle counts as "near a bifurcation".
 pub const NEAR: f64 = 1e-3;
 
@@ -85,6 +89,16 @@ impl Stability {
     /// Whether both eigenvalues lie inside the unit circle.
     pub fn is_stable(&self) -> bool {
         self.largest_modulus < 1.0
+    }
+
+    /// Whether an eigenvalue is `+1` to round-off (within [`UNIT_TOL`]): the
+    /// motion is one of a continuum of neutrally stable periodic motions
+    /// (e.g. the undamped Coulomb oscillator at `W = sqrt(c) / (2 n)`,
+    /// Csernák, Stépán & Shaw, Nonlinear Dyn. 2007), not an isolated one.
+    pub fn has_unit_eigenvalue(&self) -> bool {
+        self.eigenvalues
+            .iter()
+            .any(|e| (e[0] - 1.0).abs() <= UNIT_TOL && e[1].abs() <= UNIT_TOL)
     }
 }
 

@@ -17,7 +17,7 @@
 use serde::Serialize;
 
 use crate::admissible::{conditions, ViolationKind};
-use crate::attractor::{self, Attractor, AttractorOptions, NoMotion};
+use crate::attractor::{self, Attractor, AttractorOptions, NoMotion, PermanentStick};
 use crate::model::Model;
 use crate::motion::{solve, solve_with, Motion, OrbitError};
 use crate::param::{ParamError, ParamSet};
@@ -198,6 +198,19 @@ fn nm_summary(nm: &NoMotion) -> MotionSummary {
     }
 }
 
+fn stick_summary(s: &PermanentStick) -> MotionSummary {
+    MotionSummary {
+        structure: "stick".into(),
+        n: 1,
+        start_wt: s.since.rem_euclid(TAU),
+        start_x: s.x,
+        eigenvalues: vec![],
+        stable: true,
+        max_v: None,
+        points: vec![],
+    }
+}
+
 impl MotionSummary {
     fn same_as(&self, other: &MotionSummary) -> bool {
         if self.structure != other.structure || self.n != other.n {
@@ -205,6 +218,9 @@ impl MotionSummary {
         }
         if self.structure == "NM" {
             return true;
+        }
+        if self.structure == "stick" {
+            return (self.start_x - other.start_x).abs() < 1e-6;
         }
         let d = (self.start_wt - other.start_wt).abs();
         (d.min(TAU - d) < 1e-6) && (self.start_x - other.start_x).abs() < 1e-6
@@ -380,6 +396,10 @@ fn follow<M: Model>(
         Ok(Attractor::NoMotion(nm)) => {
             found[0].push(nm_summary(&nm));
             Branch::NoMotion { domain: nm.domain }
+        }
+        Ok(Attractor::Stick(s)) => {
+            found[0].push(stick_summary(&s));
+            Branch::Lost
         }
         Err(_) => Branch::Lost,
     };
@@ -611,6 +631,7 @@ fn to_branch<M: Model>(a: Result<Attractor, OrbitError>) -> (Branch, String) {
             )
         }
         Ok(Attractor::NoMotion(nm)) => (Branch::NoMotion { domain: nm.domain }, "NM".into()),
+        Ok(Attractor::Stick(_)) => (Branch::Lost, "stick".into()),
         Err(_) => (Branch::Lost, "unsettled".into()),
     }
 }

@@ -180,6 +180,7 @@ fn piecewise<M: Model>(p: M::Params) -> Result<(Fingerprint, String, f64), Strin
     {
         Attractor::Periodic(m) => m,
         Attractor::NoMotion(_) => return Err("no motion reaches the belt speed".into()),
+        Attractor::Stick(_) => return Err("the mass sticks forever".into()),
     };
     let seconds = start.elapsed().as_secs_f64();
     let info = M::INFO;

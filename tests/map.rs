@@ -110,6 +110,7 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
                 assert!(p.motions.contains(&label), "{label} not in {p:?}");
             }
             Ok(Attractor::NoMotion(_)) => assert!(p.motions.iter().any(|m| m == "NM"), "{p:?}"),
+            Ok(Attractor::Stick(_)) => assert!(p.motions.iter().any(|m| m == "stick"), "{p:?}"),
             Err(e) => assert!(p.status.contains("start 1"), "{e} but {p:?}"),
         }
     }

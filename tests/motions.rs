@@ -89,6 +89,7 @@ fn simulation_from_rest_finds_the_reference_motions() {
         match attractor::find(&sim, start, AttractorOptions::default()).expect("settles") {
             Attractor::Periodic(motion) => assert_matches(&r, &motion, "simulate"),
             Attractor::NoMotion(nm) => panic!("{}: found NM {nm:?}", r.structure),
+            Attractor::Stick(s) => panic!("{}: found a stick {s:?}", r.structure),
         }
     }
 }
@@ -110,5 +111,6 @@ fn no_motion_at_w_1_is_certified() {
         Attractor::Periodic(m) => {
             panic!("expected NM, found {}", m.structure.notation(Paper::INFO))
         }
+        Attractor::Stick(s) => panic!("expected NM, found a stick {s:?}"),
     }
 }

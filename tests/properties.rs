@@ -129,6 +129,7 @@ fn check_attractor(p: Params) -> Result<(), TestCaseError> {
                     m.structure.periods()
                 ),
                 Ok(Attractor::NoMotion(nm)) => format!("NM in domain {}", nm.domain),
+                Ok(Attractor::Stick(s)) => format!("stick at x = {}", s.x),
                 Err(e) => format!("error: {e}"),
             }
         );
@@ -153,6 +154,9 @@ fn check_attractor(p: Params) -> Result<(), TestCaseError> {
                 "{}: the re-simulation returns {dphi:e} (phase), {dx:e} (x) away from point 0",
                 motion.structure.notation(Paper::INFO)
             );
+        }
+        Ok(Attractor::Stick(s)) => {
+            prop_assert!(false, "a permanent stick on a moving belt: {s:?}");
         }
         Ok(Attractor::NoMotion(nm)) => {
             let dom = Paper::INFO.domains[nm.domain];
