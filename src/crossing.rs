@@ -84,6 +84,9 @@ pub fn excluded(h0: f64, dh0: f64, bound: f64, delta: f64) -> bool {
 /// * `bound(φ, Δ)` bounds `|h''|` on `[φ, φ + Δ]`;
 /// * `step` is the largest interval tested at once;
 /// * `graze_tol` is how close to zero a non-crossing touch must come to be a graze.
+///
+/// The side each function starts on (the sign of `h_k(φ0)`, or of `h'` where
+/// `h_k(φ0) = 0`) is taken as its inside; see [`first_root_inside`].
 pub fn first_root(
     probe: &impl Fn(f64) -> Probe,
     bound: &impl Fn(f64, f64, &Probe) -> f64,
@@ -92,13 +95,39 @@ pub fn first_root(
     step: f64,
     graze_tol: f64,
 ) -> Option<Root> {
+    let p = probe(phi0);
+    let inside =
+        p.h.map(|h| if h != 0.0 { h.signum() } else { p.dh.signum() });
+    first_root_inside(probe, bound, phi0, phi_end, step, graze_tol, inside)
+}
+
+/// [`first_root`] with the sign of each event function on the inside (the
+/// side the motion is on: `+1` or `-1`). A graze is a touch from the inside,
+/// reported once, at its extremum: where `h'` points back inside the touch
+/// has passed (so a search resumed just after a graze does not find it
+/// again), and the comparison is with the known inside rather than with the
+/// sign of `h` itself, which rounding flips near an exact touch.
+pub fn first_root_inside(
+    probe: &impl Fn(f64) -> Probe,
+    bound: &impl Fn(f64, f64, &Probe) -> f64,
+    phi0: f64,
+    phi_end: f64,
+    step: f64,
+    graze_tol: f64,
+    inside: [f64; 2],
+) -> Option<Root> {
     let mut phi = phi0;
     let mut p = probe(phi);
     while phi < phi_end {
         let delta = step.min(phi_end - phi);
         // Leaves are a few hundred ulps wide, well above the rounding of h.
         let min_width = (step * 1e-12).max(256.0 * f64::EPSILON * phi.abs());
-        if let Some(r) = search(probe, bound, phi, delta, &p, graze_tol, min_width) {
+        let ctx = Search {
+            graze_tol,
+            min_width,
+            inside,
+        };
+        if let Some(r) = search(probe, bound, phi, delta, &p, &ctx) {
             return Some(r);
         }
         let next = phi + delta;
@@ -119,15 +148,22 @@ pub fn first_root(
     None
 }
 
+/// The constants of one search.
+struct Search {
+    graze_tol: f64,
+    min_width: f64,
+    inside: [f64; 2],
+}
+
 fn search(
     probe: &impl Fn(f64) -> Probe,
     bound: &impl Fn(f64, f64, &Probe) -> f64,
     a: f64,
     delta: f64,
     pa: &Probe,
-    graze_tol: f64,
-    min_width: f64,
+    ctx: &Search,
 ) -> Option<Root> {
+    let (graze_tol, min_width) = (ctx.graze_tol, ctx.min_width);
     if pa.h.iter().any(|h| h.is_nan()) || !pa.dh.is_finite() {
         return Some(Root {
             phase: a,
@@ -148,7 +184,7 @@ fn search(
     let slope_tol = 2.0 * (2.0 * b * graze_tol).sqrt();
     for k in 0..2 {
         if pa.h[k].abs() <= graze_tol && pa.dh.abs() <= slope_tol {
-            if let Some(r) = tangency(probe, k, a, delta, pa, graze_tol, slope_tol) {
+            if let Some(r) = tangency(probe, k, a, delta, pa, graze_tol, slope_tol, ctx.inside[k]) {
                 return Some(r);
             }
         }
@@ -204,9 +240,12 @@ fn search(
                 })
             } else if pa.h[k].abs().min(pb.h[k].abs()) <= graze_tol
                 && pa.dh.abs().min(pb.dh.abs()) <= slope_tol
+                && !moving_inside(pa.dh, ctx.inside[k])
             {
                 // Small and flat: a touch. (Small but steep is just next to a
-                // crossing, which the next interval holds.)
+                // crossing, which the next interval holds. Small, flat and
+                // moving away from zero is the tail of a touch already passed:
+                // one tangency is one graze.)
                 Some(Root {
                     phase: a,
                     which: k,
@@ -224,7 +263,7 @@ fn search(
         return best;
     }
     let half = 0.5 * delta;
-    if let Some(r) = search(probe, bound, a, half, pa, graze_tol, min_width) {
+    if let Some(r) = search(probe, bound, a, half, pa, ctx) {
         return Some(r);
     }
     let mid = a + half;
@@ -232,7 +271,7 @@ fn search(
     if let Some(r) = hidden_crossing(probe, a, pa, mid, &pm) {
         return Some(r);
     }
-    search(probe, bound, mid, delta - half, &pm, graze_tol, min_width)
+    search(probe, bound, mid, delta - half, &pm, ctx)
 }
 
 /// A sign change of `h_k` between `a` and `b` after the search found no root
@@ -264,8 +303,20 @@ fn hidden_crossing(
     best
 }
 
+/// Whether `h` moves back to the inside (`h'` has the inside's sign): past
+/// a tangency, never towards one. (The slope is smooth where `h` itself is
+/// lost in rounding near an exact touch.)
+#[inline]
+fn moving_inside(dh: f64, inside: f64) -> bool {
+    dh != 0.0 && (dh > 0.0) == (inside > 0.0)
+}
+
 /// The extremum of `h_k` in `[a, a + delta]` near a tangency: a graze if
-/// `|h|` there is within `graze_tol`.
+/// `h` there is within `graze_tol` of zero, on the inside (or zero). A graze
+/// is reported at the extremum (where `h'` changes sign), or on the approach
+/// where the slope is flat to rounding; never where `h` moves back inside:
+/// that tangency has been passed (reported already, when the search resumes
+/// just after it). So one tangency is one graze.
 fn tangency(
     probe: &impl Fn(f64) -> Probe,
     k: usize,
@@ -274,9 +325,25 @@ fn tangency(
     pa: &Probe,
     graze_tol: f64,
     slope_tol: f64,
+    inside: f64,
 ) -> Option<Root> {
+    if moving_inside(pa.dh, inside) {
+        return None;
+    }
     let pb = probe(a + delta);
-    let at = if (pa.dh > 0.0) != (pb.dh > 0.0) {
+    let at = if pa.dh == 0.0 {
+        a
+    } else if (pa.dh > 0.0) == (pb.dh > 0.0) && pb.dh != 0.0 {
+        // No turn in the interval: a touch here only if the slope is already
+        // within rounding of flat (near an exact touch `h` is lost in its
+        // rounding, and the exclusion test cannot be trusted there); the
+        // caller locates its extremum ([`touch_extremum`]).
+        if pa.dh.abs() <= slope_tol * 1e-3 {
+            a
+        } else {
+            return None;
+        }
+    } else {
         // Bisect the sign change of the slope.
         let (mut lo, mut hi) = (a, a + delta);
         for _ in 0..60 {
@@ -288,18 +355,53 @@ fn tangency(
             }
         }
         0.5 * (lo + hi)
-    } else if pa.dh.abs() <= slope_tol * 1e-3 {
-        a
-    } else {
-        return None;
     };
     let h = probe(at).h[k];
-    (h.abs() <= graze_tol && (h == 0.0 || (h > 0.0) == (pa.h[k] > 0.0) || pa.h[k] == 0.0))
-        .then_some(Root {
-            phase: at,
-            which: k,
-            kind: RootKind::Graze,
-        })
+    (h.abs() <= graze_tol && (h == 0.0 || (h > 0.0) == (inside > 0.0))).then_some(Root {
+        phase: at,
+        which: k,
+        kind: RootKind::Graze,
+    })
+}
+
+/// The extremum of a touch reported at `phase`: the first phase, at or after
+/// `phase`, where the slope `h'` no longer approaches the boundary (it is 0
+/// or points to the `inside` sign), to the rounding of the phase; `phase`
+/// itself if it does not approach there, or does not turn within `horizon`.
+/// A search resumed just past it does not find the same touch again.
+pub fn touch_extremum(probe: &impl Fn(f64) -> Probe, phase: f64, inside: f64, horizon: f64) -> f64 {
+    let turned = |phi: f64| {
+        let d = probe(phi).dh;
+        d == 0.0 || (d > 0.0) == (inside > 0.0) || d.is_nan()
+    };
+    if turned(phase) {
+        return phase;
+    }
+    let mut lo = phase;
+    let mut w = (horizon * 1e-12).max(4.0 * f64::EPSILON * phase.abs());
+    let mut hi = loop {
+        let b = phase + w;
+        if turned(b) {
+            break b;
+        }
+        if w >= horizon {
+            return phase;
+        }
+        lo = b;
+        w *= 2.0;
+    };
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if turned(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
 }
 
 /// Safeguarded Newton between `a` and `b`, where function `k` changes sign.
@@ -385,6 +487,31 @@ mod tests {
             assert_eq!(r.kind, RootKind::Unresolved);
             assert_eq!(r.phase, phi0);
         }
+    }
+
+    #[test]
+    fn a_search_resumed_past_a_graze_does_not_find_it_again() {
+        // h = sin φ − 1 touches 0 from below (the inside) at π/2 and 5π/2.
+        let p = sine_probe(1.0);
+        let b = |_: f64, _: f64, _: &Probe| 1.0;
+        let inside = [-1.0, 1.0];
+        let r = first_root_inside(&p, &b, 0.0, 5.0, 1.0, 1e-9, inside).unwrap();
+        assert_eq!(r.kind, RootKind::Graze);
+        let at = touch_extremum(&p, r.phase, -1.0, 1.0);
+        assert!((at - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{at}");
+        for nudge in [1e-12, 1e-9, 1e-6] {
+            let again = first_root_inside(&p, &b, at + nudge, 5.0, 1.0, 1e-9, inside);
+            assert!(
+                again.is_none(),
+                "resumed {nudge:e} past the touch: {again:?}"
+            );
+        }
+        // The next touch is found, once.
+        let r = first_root_inside(&p, &b, at + 1e-9, 9.0, 1.0, 1e-9, inside).unwrap();
+        assert_eq!(r.kind, RootKind::Graze);
+        let at = touch_extremum(&p, r.phase, -1.0, 1.0);
+        assert!((at - 2.5 * std::f64::consts::PI).abs() < 1e-12, "{at}");
+        assert!(first_root_inside(&p, &b, at + 1e-9, 9.0, 1.0, 1e-9, inside).is_none());
     }
 
     #[test]
