@@ -84,9 +84,6 @@ pub fn excluded(h0: f64, dh0: f64, bound: f64, delta: f64) -> bool {
 /// * `bound(φ, Δ)` bounds `|h''|` on `[φ, φ + Δ]`;
 /// * `step` is the largest interval tested at once;
 /// * `graze_tol` is how close to zero a non-crossing touch must come to be a graze.
-///
-/// The side each function starts on (the sign of `h_k(φ0)`, or of `h'` where
-/// `h_k(φ0) = 0`) is taken as its inside; see [`first_root_inside`].
 pub fn first_root(
     probe: &impl Fn(f64) -> Probe,
     bound: &impl Fn(f64, f64, &Probe) -> f64,
@@ -95,39 +92,13 @@ pub fn first_root(
     step: f64,
     graze_tol: f64,
 ) -> Option<Root> {
-    let p = probe(phi0);
-    let inside =
-        p.h.map(|h| if h != 0.0 { h.signum() } else { p.dh.signum() });
-    first_root_inside(probe, bound, phi0, phi_end, step, graze_tol, inside)
-}
-
-/// [`first_root`] with the sign of each event function on the inside (the
-/// side the motion is on: `+1` or `-1`). A graze is a touch from the inside,
-/// reported once, at its extremum: where `h'` points back inside the touch
-/// has passed (so a search resumed just after a graze does not find it
-/// again), and the comparison is with the known inside rather than with the
-/// sign of `h` itself, which rounding flips near an exact touch.
-pub fn first_root_inside(
-    probe: &impl Fn(f64) -> Probe,
-    bound: &impl Fn(f64, f64, &Probe) -> f64,
-    phi0: f64,
-    phi_end: f64,
-    step: f64,
-    graze_tol: f64,
-    inside: [f64; 2],
-) -> Option<Root> {
     let mut phi = phi0;
     let mut p = probe(phi);
     while phi < phi_end {
         let delta = step.min(phi_end - phi);
         // Leaves are a few hundred ulps wide, well above the rounding of h.
         let min_width = (step * 1e-12).max(256.0 * f64::EPSILON * phi.abs());
-        let ctx = Search {
-            graze_tol,
-            min_width,
-            inside,
-        };
-        if let Some(r) = search(probe, bound, phi, delta, &p, &ctx) {
+        if let Some(r) = search(probe, bound, phi, delta, &p, graze_tol, min_width) {
             return Some(r);
         }
         let next = phi + delta;
@@ -148,22 +119,15 @@ pub fn first_root_inside(
     None
 }
 
-/// The constants of one search.
-struct Search {
-    graze_tol: f64,
-    min_width: f64,
-    inside: [f64; 2],
-}
-
 fn search(
     probe: &impl Fn(f64) -> Probe,
     bound: &impl Fn(f64, f64, &Probe) -> f64,
     a: f64,
     delta: f64,
     pa: &Probe,
-    ctx: &Search,
+    graze_tol: f64,
+    min_width: f64,
 ) -> Option<Root> {
-    let (graze_tol, min_width) = (ctx.graze_tol, ctx.min_width);
     if pa.h.iter().any(|h| h.is_nan()) || !pa.dh.is_finite() {
         return Some(Root {
             phase: a,
@@ -184,7 +148,7 @@ fn search(
     let slope_tol = 2.0 * (2.0 * b * graze_tol).sqrt();
     for k in 0..2 {
         if pa.h[k].abs() <= graze_tol && pa.dh.abs() <= slope_tol {
-            if let Some(r) = tangency(probe, k, a, delta, pa, graze_tol, slope_tol, ctx.inside[k]) {
+            if let Some(r) = tangency(probe, k, a, delta, pa, graze_tol, slope_tol) {
                 return Some(r);
             }
         }
@@ -240,12 +204,9 @@ fn search(
                 })
             } else if pa.h[k].abs().min(pb.h[k].abs()) <= graze_tol
                 && pa.dh.abs().min(pb.dh.abs()) <= slope_tol
-                && !moving_inside(pa.dh, ctx.inside[k])
             {
                 // Small and flat: a touch. (Small but steep is just next to a
-                // crossing, which the next interval holds. Small, flat and
-                // moving away from zero is the tail of a touch already passed:
-                // one tangency is one graze.)
+                // crossing, which the next interval holds.)
                 Some(Root {
                     phase: a,
                     which: k,
@@ -263,7 +224,7 @@ fn search(
         return best;
     }
     let half = 0.5 * delta;
-    if let Some(r) = search(probe, bound, a, half, pa, ctx) {
+    if let Some(r) = search(probe, bound, a, half, pa, graze_tol, min_width) {
         return Some(r);
     }
     let mid = a + half;
@@ -271,7 +232,7 @@ fn search(
     if let Some(r) = hidden_crossing(probe, a, pa, mid, &pm) {
         return Some(r);
     }
-    search(probe, bound, mid, delta - half, &pm, ctx)
+    search(probe, bound, mid, delta - half, &pm, graze_tol, min_width)
 }
 
 /// A sign change of `h_k` between `a` and `b` after the search found no root
@@ -303,20 +264,8 @@ fn hidden_crossing(
     best
 }
 
-/// Whether `h` moves back to the inside (`h'` has the inside's sign): past
-/// a tangency, never towards one. (The slope is smooth where `h` itself is
-/// lost in rounding near an exact touch.)
-#[inline]
-fn moving_inside(dh: f64, inside: f64) -> bool {
-    dh != 0.0 && (dh > 0.0) == (inside > 0.0)
-}
-
 /// The extremum of `h_k` in `[a, a + delta]` near a tangency: a graze if
-/// `h` there is within `graze_tol` of zero, on the inside (or zero). A graze
-/// is reported at the extremum (where `h'` changes sign), or on the approach
-/// where the slope is flat to rounding; never where `h` moves back inside:
-/// that tangency has been passed (reported already, when the search resumes
-/// just after it). So one tangency is one graze.
+/// `|h|` there is within `graze_tol`.
 fn tangency(
     probe: &impl Fn(f64) -> Probe,
     k: usize,
@@ -325,25 +274,9 @@ fn tangency(
     pa: &Probe,
     graze_tol: f64,
     slope_tol: f64,
-    inside: f64,
 ) -> Option<Root> {
-    if moving_inside(pa.dh, inside) {
-        return None;
-    }
     let pb = probe(a + delta);
-    let at = if pa.dh == 0.0 {
-        a
-    } else if (pa.dh > 0.0) == (pb.dh > 0.0) && pb.dh != 0.0 {
-        // No turn in the interval: a touch here only if the slope is already
-        // within rounding of flat (near an exact touch `h` is lost in its
-        // rounding, and the exclusion test cannot be trusted there); the
-        // caller locates its extremum ([`touch_extremum`]).
-        if pa.dh.abs() <= slope_tol * 1e-3 {
-            a
-        } else {
-            return None;
-        }
-    } else {
+    let at = if (pa.dh > 0.0) != (pb.dh > 0.0) {
         // Bisect the sign change of the slope.
         let (mut lo, mut hi) = (a, a + delta);
         for _ in 0..60 {
@@ -355,13 +288,18 @@ fn tangency(
             }
         }
         0.5 * (lo + hi)
+    } else if pa.dh.abs() <= slope_tol * 1e-3 {
+        a
+    } else {
+        return None;
     };
     let h = probe(at).h[k];
-    (h.abs() <= graze_tol && (h == 0.0 || (h > 0.0) == (inside > 0.0))).then_some(Root {
-        phase: at,
-        which: k,
-        kind: RootKind::Graze,
-    })
+    (h.abs() <= graze_tol && (h == 0.0 || (h > 0.0) == (pa.h[k] > 0.0) || pa.h[k] == 0.0))
+        .then_some(Root {
+            phase: at,
+            which: k,
+            kind: RootKind::Graze,
+        })
 }
 
 /// The extremum of a touch reported at `phase`: the first phase, at or after
@@ -490,28 +428,20 @@ mod tests {
     }
 
     #[test]
-    fn a_search_resumed_past_a_graze_does_not_find_it_again() {
-        // h = sin φ − 1 touches 0 from below (the inside) at π/2 and 5π/2.
+    fn touch_extremum_is_the_turn_of_the_slope() {
+        // h = sin φ − 1 touches 0 from below (the inside) at π/2 and 5π/2;
+        // reported anywhere on the approach, the touch is at the turn.
         let p = sine_probe(1.0);
-        let b = |_: f64, _: f64, _: &Probe| 1.0;
-        let inside = [-1.0, 1.0];
-        let r = first_root_inside(&p, &b, 0.0, 5.0, 1.0, 1e-9, inside).unwrap();
+        let r = first_root(&p, &|_, _, _| 1.0, 0.0, 5.0, 1.0, 1e-9).unwrap();
         assert_eq!(r.kind, RootKind::Graze);
-        let at = touch_extremum(&p, r.phase, -1.0, 1.0);
-        assert!((at - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{at}");
-        for nudge in [1e-12, 1e-9, 1e-6] {
-            let again = first_root_inside(&p, &b, at + nudge, 5.0, 1.0, 1e-9, inside);
-            assert!(
-                again.is_none(),
-                "resumed {nudge:e} past the touch: {again:?}"
-            );
+        for from in [r.phase, 1.5, 1.0] {
+            let at = touch_extremum(&p, from, -1.0, 1.0);
+            assert!((at - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{at}");
+            assert!(p(at).dh <= 0.0);
         }
-        // The next touch is found, once.
-        let r = first_root_inside(&p, &b, at + 1e-9, 9.0, 1.0, 1e-9, inside).unwrap();
-        assert_eq!(r.kind, RootKind::Graze);
-        let at = touch_extremum(&p, r.phase, -1.0, 1.0);
-        assert!((at - 2.5 * std::f64::consts::PI).abs() < 1e-12, "{at}");
-        assert!(first_root_inside(&p, &b, at + 1e-9, 9.0, 1.0, 1e-9, inside).is_none());
+        // Past the turn, or beyond the horizon: where it is asked.
+        assert_eq!(touch_extremum(&p, 2.0, -1.0, 1.0), 2.0);
+        assert_eq!(touch_extremum(&p, 0.0, -1.0, 1.0), 0.0);
     }
 
     #[test]

@@ -15,7 +15,7 @@
 
 use serde::Serialize;
 
-use crate::crossing::{first_root_inside, touch_extremum, Probe, Root, RootKind};
+use crate::crossing::{first_root, touch_extremum, Probe, Root, RootKind};
 use crate::model::{Coefficients, Model, Oscillator};
 use crate::param::{ParamError, ParamSet};
 
@@ -158,11 +158,16 @@ pub enum SimError {
 /// `d_j` is huge and the search would run for hours (a typed error instead).
 pub const MAX_STEPS_PER_PERIOD: f64 = 1e7;
 
-/// Where a graze found at `root` is reported: at the touch's extremum
-/// ([`touch_extremum`]; the search may find a flat touch a little before
-/// it), so that the search resumed just past the graze does not find the
-/// same tangency again. Unless the other event function has a root on the
-/// way there (a band narrower than the touch's reach): then where it was found.
+/// Where a graze found at `root` is reported, and where the search resumes
+/// after it, so that one tangency is one graze: reported at the touch's
+/// extremum ([`touch_extremum`]: the search may find a flat touch a little
+/// before it, or, where rounding hides an exact touch, just after it); the
+/// search resumes once the touching function is back inside its band by more
+/// than the graze tolerance (or turns towards the boundary again), since
+/// anything it does before that is the same touch, within the tolerance.
+/// The other function is searched on the skipped stretch: if it has a root
+/// there (a band narrower than the touch's reach) the graze is reported where
+/// found and the search resumes just after it.
 fn graze_phase(
     probe: &impl Fn(f64) -> Probe,
     bound: &impl Fn(f64, f64, &Probe) -> f64,
@@ -170,20 +175,30 @@ fn graze_phase(
     step: f64,
     graze_tol: f64,
     inside: [f64; 2],
-) -> f64 {
+) -> (f64, f64) {
     let k = root.which;
-    let at = touch_extremum(probe, root.phase, inside[k], step);
-    if at > root.phase {
-        let masked = |phi: f64| {
-            let mut p = probe(phi);
-            p.h[k] = f64::INFINITY;
-            p
-        };
-        if first_root_inside(&masked, bound, root.phase, at, step, graze_tol, inside).is_some() {
-            return root.phase;
+    let side = inside[k];
+    let at = touch_extremum(probe, root.phase, side, step);
+    // Back inside by more than the tolerance, doubling the distance.
+    let mut w = (step * 1e-9).max(4.0 * f64::EPSILON * at.abs());
+    let resume = loop {
+        let b = at + w;
+        let p = probe(b);
+        let inward = p.dh == 0.0 || (p.dh > 0.0) == (side > 0.0);
+        if !(p.h[k] * side <= graze_tol) || !inward || w >= step {
+            break b;
         }
+        w *= 2.0;
+    };
+    let masked = |phi: f64| {
+        let mut p = probe(phi);
+        p.h[k] = f64::INFINITY;
+        p
+    };
+    if first_root(&masked, bound, root.phase, resume, step, graze_tol).is_some() {
+        return (root.phase, root.phase + step * 1e-9);
     }
-    at
+    (at, resume)
 }
 
 fn unresolved(phase: f64, location: Location) -> SimError {
@@ -411,15 +426,7 @@ impl<M: Model> Simulator<M> {
                 let inside = [1.0, -1.0];
                 let mut from = seg.search_from;
                 let root = loop {
-                    match first_root_inside(
-                        &probe,
-                        &bound,
-                        from,
-                        phase_limit,
-                        step,
-                        self.opts.graze_tol,
-                        inside,
-                    ) {
+                    match first_root(&probe, &bound, from, phase_limit, step, self.opts.graze_tol) {
                         Some(r) if departure(&r) => {
                             from = r.phase + 1e-9 * seg.phase.abs().max(1.0)
                         }
@@ -445,7 +452,8 @@ impl<M: Model> Simulator<M> {
                 .expect("root of a present boundary");
                 let vb = self.velocities[k];
                 if root.kind == RootKind::Graze {
-                    let at = graze_phase(&probe, &bound, &root, step, self.opts.graze_tol, inside);
+                    let (at, resume) =
+                        graze_phase(&probe, &bound, &root, step, self.opts.graze_tol, inside);
                     let (x, v) = self.state_at(seg, at);
                     let event = Event {
                         phase: at,
@@ -457,7 +465,7 @@ impl<M: Model> Simulator<M> {
                         after: seg.location,
                     };
                     let next = Segment {
-                        search_from: at + step * 1e-9,
+                        search_from: resume,
                         ..*seg
                     };
                     return Ok(Some((event, next)));
@@ -519,14 +527,13 @@ impl<M: Model> Simulator<M> {
                 // Stuck: |Fnf| < as, so Fnf − as < 0 and Fnf + as > 0.
                 let inside = [-1.0, 1.0];
                 let step = std::f64::consts::FRAC_PI_4;
-                let root = first_root_inside(
+                let root = first_root(
                     &probe,
                     &bound,
                     seg.search_from,
                     phase_limit,
                     step,
                     self.opts.graze_tol,
-                    inside,
                 );
                 let Some(root) = root else {
                     return Ok(None);
@@ -540,7 +547,8 @@ impl<M: Model> Simulator<M> {
                 }
                 if root.kind == RootKind::Graze {
                     // |Fnf| touches as without exceeding it: the stick persists.
-                    let at = graze_phase(&probe, &bound, &root, step, self.opts.graze_tol, inside);
+                    let (at, resume) =
+                        graze_phase(&probe, &bound, &root, step, self.opts.graze_tol, inside);
                     let (x, _) = self.state_at(seg, at);
                     let event = Event {
                         phase: at,
@@ -552,7 +560,7 @@ impl<M: Model> Simulator<M> {
                         after: Location::Stick,
                     };
                     let next = Segment {
-                        search_from: at + 1e-9,
+                        search_from: resume,
                         ..*seg
                     };
                     return Ok(Some((event, next)));

@@ -2034,6 +2034,21 @@ fn case7_stick_end_within_1e_12_of_the_static_bound() {
                         assert_eq!(next.location, Location::Stick, "{what}");
                         // The run goes on: past the one graze of this tangency
                         // the stick lasts until |Fnf| really reaches as.
+                        // One graze, over the same search (same limit) as next_event.
+                        let mut near = Vec::new();
+                        sim.run(seg, peak + 0.05, |e| near.push(*e))
+                            .expect("no error");
+                        let once = near
+                            .iter()
+                            .take_while(|e| e.kind == EventKind::Graze)
+                            .count();
+                        worst_repeats = worst_repeats.max(once);
+                        assert_eq!(
+                            once,
+                            1,
+                            "{what}: one tangency, {once} grazes: {:?}",
+                            &near[..once.min(4)]
+                        );
                         let mut after = Vec::new();
                         sim.run(seg, peak + 1.0, |e| after.push(*e))
                             .expect("no error");
@@ -2041,13 +2056,7 @@ fn case7_stick_end_within_1e_12_of_the_static_bound() {
                             .iter()
                             .take_while(|e| e.kind == EventKind::Graze)
                             .count();
-                        worst_repeats = worst_repeats.max(repeats);
-                        assert_eq!(
-                            repeats,
-                            1,
-                            "{what}: one tangency, {repeats} grazes: {:?}",
-                            &after[..repeats.min(4)]
-                        );
+                        assert!(repeats <= 1, "{what}: {:?}", &after[..repeats.min(4)]);
                         // Short of as (eps < 0) the stick must not end at this
                         // tangency; exactly at as either verdict holds (round-off).
                         if let Some(e2) = after.get(repeats) {
