@@ -155,11 +155,20 @@ impl<M: Model> PeriodicSolver<M> {
     }
 
     /// Size of the Newton step in the workspace, each unknown in its natural
-    /// unit: phases in radians, displacements over the length scale `l`.
-    fn step_size(&self, l: f64) -> f64 {
+    /// unit: phases in radians, displacements over the length scale `l`;
+    /// a component within 8 ulps of its unknown counts as the tolerance
+    /// `tol` at most (the phase of a motion many periods from 0 cannot be
+    /// resolved to 1e-12 radians: its rounding is the limit).
+    fn step_size(&self, points: &[SwitchingPoint], l: f64, tol: f64) -> f64 {
+        let ulps = if tol > 0.0 {
+            8.0 * f64::EPSILON / tol
+        } else {
+            0.0
+        };
         let mut s = 0.0f64;
-        for d in &self.delta {
-            let v = d[1].abs().max(d[0].abs() / l);
+        for (d, q) in self.delta.iter().zip(points) {
+            // (l ≥ |x_k|: the rounding of x is far below the tolerance.)
+            let v = (d[1].abs() / (ulps * q.phase.abs()).max(1.0)).max(d[0].abs() / l);
             if v.is_nan() {
                 return f64::NAN;
             }
@@ -353,7 +362,7 @@ impl<M: Model> PeriodicSolver<M> {
                     reason: s.reason.into(),
                 };
             }
-            let size = self.step_size(Self::length_scale(p, points));
+            let size = self.step_size(points, Self::length_scale(p, points), opts.tolerance);
             last_step = size;
             for ((t, pt), d) in self.trial.iter_mut().zip(points.iter()).zip(&self.delta) {
                 *t = SwitchingPoint {

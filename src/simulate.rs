@@ -214,6 +214,8 @@ fn unresolved(phase: f64, location: Location) -> SimError {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimOptions {
     /// How close to a boundary a tangent touch must come to count as a graze.
+    /// A touch is one `Graze` event, at its extremum; the search resumes once
+    /// the motion is back inside by more than this.
     pub graze_tol: f64,
     /// At most this many events per call of [`Simulator::run`].
     pub max_events: usize,
