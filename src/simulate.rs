@@ -185,7 +185,8 @@ fn graze_phase(
         let b = at + w;
         let p = probe(b);
         let inward = p.dh == 0.0 || (p.dh > 0.0) == (side > 0.0);
-        if !(p.h[k] * side <= graze_tol) || !inward || w >= step {
+        let back_inside = p.h[k] * side > graze_tol || p.h[k].is_nan();
+        if back_inside || !inward || w >= step {
             break b;
         }
         w *= 2.0;

@@ -739,7 +739,7 @@ fn case3_unbounded_growth_is_a_typed_error() {
                 eprintln!("{name}: {text}");
             }
             Ok(seg) => {
-                let (x, v) = sim.state_at(&seg, 1e5 * TAU);
+                let (x, v) = sim.state_at(seg, 1e5 * TAU);
                 assert!(
                     x.is_finite() && v.is_finite(),
                     "{name}: the run ended without error in a non-finite state"
