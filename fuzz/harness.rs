@@ -296,7 +296,7 @@ fn exercise<M: Model>(r: &mut Bytes) {
     if let Ok(seg) = sim.start(x, v, phase) {
         let opts = AttractorOptions {
             max_periods: 1 + (r.byte() % 12) as u32,
-            max_cycle: 1 + r.byte() as usize % 12,
+            max_cycle: Some(1 + r.byte() as usize % 12),
             newton: NewtonOptions {
                 tolerance: 1e-12,
                 max_iterations: 30,

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::model::{MappingKind, Model, Side};
+use crate::model::{MappingKind, Model, ModelInfo, Side};
 use crate::motion::{solve, Motion, OrbitError};
 use crate::periodic::{NewtonOptions, SwitchingPoint};
 use crate::simulate::{Event, EventKind, Location, Segment, Simulator};
@@ -16,8 +16,13 @@ const TAU: f64 = 2.0 * std::f64::consts::PI;
 pub struct AttractorOptions {
     /// Forcing periods simulated at most.
     pub max_periods: u32,
-    /// Longest cycle, in mappings, looked for.
-    pub max_cycle: usize,
+    /// Longest cycle, in mappings, looked for. `None` (the default): scaled
+    /// with the model ([`AttractorOptions::cycle_cap`]), and longer cycles
+    /// (up to 32 forcing periods and 16 times that cap) are still found by
+    /// their period. `Some(n)`: a motion settled on a longer cycle ends in
+    /// [`OrbitError::CycleTooLong`], "the cycle is longer than n mappings",
+    /// never in "no periodic motion".
+    pub max_cycle: Option<usize>,
     /// Newton's options for the refinement.
     pub newton: NewtonOptions,
 }
@@ -26,9 +31,28 @@ impl Default for AttractorOptions {
     fn default() -> Self {
         Self {
             max_periods: 3000,
-            max_cycle: 160,
+            max_cycle: None,
             newton: NewtonOptions::default(),
         }
+    }
+}
+
+/// The cycle cap when none is given: 160 mappings, or 4 per mapping
+/// function of the model if that is more (a model with hundreds of pieces
+/// crosses hundreds of boundaries per forcing period).
+pub const DEFAULT_MAX_CYCLE: usize = 160;
+
+/// Cycles longer than the cap are still recognised, by their period, up to
+/// this many forcing periods (and up to 16 times the cap in mappings): with
+/// the model's own cap they are refined, with a cap given they are reported
+/// as too long.
+const LONG_CYCLE_PERIODS: u32 = 32;
+
+impl AttractorOptions {
+    /// The longest cycle looked for, in mappings, for a model with `info`.
+    pub fn cycle_cap(&self, info: &ModelInfo) -> usize {
+        self.max_cycle
+            .unwrap_or_else(|| DEFAULT_MAX_CYCLE.max(4 * info.mappings.len()))
     }
 }
 
@@ -166,35 +190,68 @@ pub fn no_motion_certificate<M: Model>(
 /// The smallest cycle at the end of `events`: `(m events, N periods)`.
 fn detect_cycle(events: &[Event], max_cycle: usize, tol: f64) -> Option<(usize, u32)> {
     let n = events.len();
-    'len: for m in 1..=max_cycle {
+    for m in 1..=max_cycle {
         if n < 2 * m + 1 {
             return None;
         }
-        let mut shift = None;
-        for i in 0..=m {
-            let (a, b) = (&events[n - 1 - i], &events[n - 1 - i - m]);
-            if a.boundary != b.boundary
-                || a.kind != b.kind
-                || a.before != b.before
-                || a.after != b.after
-            {
-                continue 'len;
-            }
-            let ds = a.phase - b.phase;
-            let scale = 1.0 + a.x.abs().max(b.x.abs());
-            if (a.x - b.x).abs() > tol * scale {
-                continue 'len;
-            }
-            match shift {
-                None => shift = Some(ds),
-                Some(s) if (ds - s).abs() > tol * s.abs().max(1.0) => continue 'len,
-                _ => {}
-            }
+        if let Some(periods) = repeats(events, m, tol) {
+            return Some((m, periods));
         }
-        let s = shift?;
-        let periods = (s / TAU).round();
-        if periods >= 1.0 && (s - periods * TAU).abs() < 10.0 * tol * s.max(1.0) {
-            return Some((m, periods as u32));
+    }
+    None
+}
+
+/// Whether the last `m + 1` events repeat the `m + 1` before them, shifted by
+/// a whole number of forcing periods: that number, if so.
+fn repeats(events: &[Event], m: usize, tol: f64) -> Option<u32> {
+    let n = events.len();
+    if m == 0 || n < 2 * m + 1 {
+        return None;
+    }
+    let mut shift = None;
+    for i in 0..=m {
+        let (a, b) = (&events[n - 1 - i], &events[n - 1 - i - m]);
+        if a.boundary != b.boundary
+            || a.kind != b.kind
+            || a.before != b.before
+            || a.after != b.after
+        {
+            return None;
+        }
+        let ds = a.phase - b.phase;
+        let scale = 1.0 + a.x.abs().max(b.x.abs());
+        if (a.x - b.x).abs() > tol * scale {
+            return None;
+        }
+        match shift {
+            None => shift = Some(ds),
+            Some(s) if (ds - s).abs() > tol * s.abs().max(1.0) => return None,
+            _ => {}
+        }
+    }
+    let s = shift?;
+    let periods = (s / TAU).round();
+    (periods >= 1.0 && (s - periods * TAU).abs() < 10.0 * tol * s.max(1.0))
+        .then_some(periods as u32)
+}
+
+/// A cycle longer than `cap` mappings at the end of `events`, found by its
+/// period instead of its length: for `N = 1, 2, …` forcing periods, the
+/// events of the last `N` periods repeat the ones before them.
+/// `(m events, N periods)`, the shortest period first.
+fn detect_long_cycle(events: &[Event], cap: usize, tol: f64) -> Option<(usize, u32)> {
+    let last = events.last()?;
+    for periods in 1..=LONG_CYCLE_PERIODS {
+        let target = last.phase - TAU * periods as f64;
+        // The event one cycle before the last one sits near `target`.
+        let i = events.partition_point(|e| e.phase < target);
+        for idx in [i.wrapping_sub(1), i] {
+            let Some(m) = (events.len() - 1).checked_sub(idx) else {
+                continue;
+            };
+            if m > cap && repeats(events, m, tol) == Some(periods) {
+                return Some((m, periods));
+            }
         }
     }
     None
@@ -250,10 +307,14 @@ pub fn find<M: Model>(
     start: Segment,
     opts: AttractorOptions,
 ) -> Result<Attractor, OrbitError> {
+    let cap = opts.cycle_cap(M::INFO);
     let mut seg = start;
-    let mut events: Vec<Event> = Vec::with_capacity(4 * opts.max_cycle + 8);
-    let keep = 4 * opts.max_cycle + 4;
+    let mut events: Vec<Event> = Vec::new();
+    // Enough events for cycles of up to 2 cap mappings, and of longer ones
+    // (up to 16 cap mappings) to be recognised as too long.
+    let keep = 32 * cap + 4;
     let mut tried_loose: Vec<(usize, u32)> = Vec::new();
+    let mut tried_long: Vec<(usize, u32)> = Vec::new();
     let mut chunk = 4.0 * TAU;
     let mut phase = start.phase;
     let end = start.phase + opts.max_periods as f64 * TAU;
@@ -287,10 +348,12 @@ pub fn find<M: Model>(
         // accepted if it is an admissible, stable motion; a strict match
         // (the transient has decayed to 1e-7) is accepted if admissible.
         let mut last = None;
+        let mut strict = false;
         for (tol, need_stable) in [(1e-4, true), (1e-7, false)] {
-            let Some((m, periods)) = detect_cycle(&events, opts.max_cycle, tol) else {
+            let Some((m, periods)) = detect_cycle(&events, cap, tol) else {
                 continue;
             };
+            strict |= !need_stable;
             // A loose candidate that failed is not tried again.
             if need_stable {
                 if tried_loose.contains(&(m, periods)) {
@@ -305,7 +368,36 @@ pub fn find<M: Model>(
             }
             last = Some(motion);
         }
-        if phase + chunk >= end {
+        // Settled (to 1e-7) on a cycle longer than the cap; or, at the end of
+        // the search, on one that repeats to 1e-4. With a cap given, that is
+        // the outcome; with the model's own cap the cycle is refined (once)
+        // like any other.
+        let last_chunk = phase + chunk >= end;
+        if !strict {
+            let long = detect_long_cycle(&events, cap, 1e-7).or_else(|| {
+                last_chunk
+                    .then(|| detect_long_cycle(&events, cap, 1e-4))
+                    .flatten()
+            });
+            if let Some((m, periods)) = long {
+                if opts.max_cycle.is_some() {
+                    return Err(OrbitError::CycleTooLong {
+                        cap,
+                        mappings: m,
+                        periods,
+                    });
+                }
+                if !tried_long.contains(&(m, periods)) {
+                    tried_long.push((m, periods));
+                    let motion = candidate(sim, &events, m, periods, opts.newton)?;
+                    if motion.is_admissible() {
+                        return Ok(Attractor::Periodic(primitive(sim, motion, opts.newton)));
+                    }
+                    last = Some(motion);
+                }
+            }
+        }
+        if last_chunk {
             if let Some(motion) = last {
                 return motion.into_result().map(Attractor::Periodic);
             }

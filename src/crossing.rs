@@ -302,6 +302,46 @@ fn tangency(
         })
 }
 
+/// The extremum of a touch reported at `phase`: the first phase, at or after
+/// `phase`, where the slope `h'` no longer approaches the boundary (it is 0
+/// or points to the `inside` sign), to the rounding of the phase; `phase`
+/// itself if it does not approach there, or does not turn within `horizon`.
+/// A search resumed just past it does not find the same touch again.
+pub fn touch_extremum(probe: &impl Fn(f64) -> Probe, phase: f64, inside: f64, horizon: f64) -> f64 {
+    let turned = |phi: f64| {
+        let d = probe(phi).dh;
+        d == 0.0 || (d > 0.0) == (inside > 0.0) || d.is_nan()
+    };
+    if turned(phase) {
+        return phase;
+    }
+    let mut lo = phase;
+    let mut w = (horizon * 1e-12).max(4.0 * f64::EPSILON * phase.abs());
+    let mut hi = loop {
+        let b = phase + w;
+        if turned(b) {
+            break b;
+        }
+        if w >= horizon {
+            return phase;
+        }
+        lo = b;
+        w *= 2.0;
+    };
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if turned(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
 /// Safeguarded Newton between `a` and `b`, where function `k` changes sign.
 fn polish(probe: &impl Fn(f64) -> Probe, k: usize, mut a: f64, mut b: f64, ha: f64) -> f64 {
     let sign_a = ha > 0.0;
@@ -385,6 +425,23 @@ mod tests {
             assert_eq!(r.kind, RootKind::Unresolved);
             assert_eq!(r.phase, phi0);
         }
+    }
+
+    #[test]
+    fn touch_extremum_is_the_turn_of_the_slope() {
+        // h = sin φ − 1 touches 0 from below (the inside) at π/2 and 5π/2;
+        // reported anywhere on the approach, the touch is at the turn.
+        let p = sine_probe(1.0);
+        let r = first_root(&p, &|_, _, _| 1.0, 0.0, 5.0, 1.0, 1e-9).unwrap();
+        assert_eq!(r.kind, RootKind::Graze);
+        for from in [r.phase, 1.5, 1.0] {
+            let at = touch_extremum(&p, from, -1.0, 1.0);
+            assert!((at - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{at}");
+            assert!(p(at).dh <= 0.0);
+        }
+        // Past the turn, or beyond the horizon: where it is asked.
+        assert_eq!(touch_extremum(&p, 2.0, -1.0, 1.0), 2.0);
+        assert_eq!(touch_extremum(&p, 0.0, -1.0, 1.0), 0.0);
     }
 
     #[test]

@@ -73,6 +73,17 @@ pub enum OrbitError {
         /// Forcing periods simulated.
         periods: u32,
     },
+    /// The simulation settled on a cycle through more mappings than the
+    /// search looks for ([`crate::attractor::AttractorOptions::max_cycle`]).
+    #[error("the cycle is longer than {cap} mappings")]
+    CycleTooLong {
+        /// The cap, in mappings.
+        cap: usize,
+        /// Mappings in the cycle seen (events of `periods` forcing periods).
+        mappings: usize,
+        /// Forcing periods of the cycle seen.
+        periods: u32,
+    },
     /// No simulation went through the structure, so there is no guess.
     #[error("no simulated motion follows {0}; give a guess")]
     NoSeed(String),

@@ -66,8 +66,12 @@ impl Termination {
 /// Newton's tolerances.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOptions {
-    /// Converged when every residual component is below this (absolute; the
-    /// residuals are displacements and velocities).
+    /// Converged when the Newton step is below this in every unknown, each
+    /// measured in its natural unit: phases `W t` in radians (dimensionless),
+    /// displacements relative to the motion's length scale (the largest of
+    /// `|x_k|`, the static deflection `|A0| / max(c, W²)` and the boundary
+    /// velocities over `W`). Scale-invariant: the same motion in other units
+    /// of length, time or mass converges in the same iterations.
     pub tolerance: f64,
     /// Iteration limit.
     pub max_iterations: usize,
@@ -126,6 +130,51 @@ impl<M: Model> PeriodicSolver<M> {
     /// The structure.
     pub fn structure(&self) -> &Structure {
         &self.structure
+    }
+
+    /// The length scale of a motion with switching points `points`: the
+    /// largest of `|x_k|`, the static deflection `|A0| / max(c, W²)` of the
+    /// forcing and `|V_b| / W` over the boundaries (so that a motion whose
+    /// switching displacements all vanish still has one). A length in the
+    /// model's units.
+    pub fn length_scale(p: &M::Params, points: &[SwitchingPoint]) -> f64 {
+        let osc = M::oscillator(p);
+        let w = osc.frequency.abs();
+        let mut l = (osc.amplitude / osc.stiffness.abs().max(w * w)).abs();
+        for b in 0..M::INFO.boundaries.len() {
+            l = l.max((M::boundary_velocity(p, b) / w).abs());
+        }
+        for q in points {
+            l = l.max(q.x.abs());
+        }
+        if l.is_finite() && l > 0.0 {
+            l
+        } else {
+            1.0
+        }
+    }
+
+    /// Size of the Newton step in the workspace, each unknown in its natural
+    /// unit: phases in radians, displacements over the length scale `l`;
+    /// a component within 8 ulps of its unknown counts as the tolerance
+    /// `tol` at most (the phase of a motion many periods from 0 cannot be
+    /// resolved to 1e-12 radians: its rounding is the limit).
+    fn step_size(&self, points: &[SwitchingPoint], l: f64, tol: f64) -> f64 {
+        let ulps = if tol > 0.0 {
+            8.0 * f64::EPSILON / tol
+        } else {
+            0.0
+        };
+        let mut s = 0.0f64;
+        for (d, q) in self.delta.iter().zip(points) {
+            // (l ≥ |x_k|: the rounding of x is far below the tolerance.)
+            let v = (d[1].abs() / (ulps * q.phase.abs()).max(1.0)).max(d[0].abs() / l);
+            if v.is_nan() {
+                return f64::NAN;
+            }
+            s = s.max(v);
+        }
+        s
     }
 
     /// The point after point `k` (wrapping with the period shift).
@@ -270,6 +319,12 @@ impl<M: Model> PeriodicSolver<M> {
     /// mappings once: the evaluation at an accepted trial point is the next
     /// iteration's Jacobian. Backtracking (residuals only) only when the full
     /// step does not decrease the residual.
+    ///
+    /// Converged when the Newton step, each unknown in its natural unit (see
+    /// [`NewtonOptions::tolerance`]), is below the tolerance (the step is
+    /// then taken), or the residual is exactly zero. The residuals
+    /// themselves are displacements, velocities or forces per unit mass, so
+    /// no absolute bound on them could serve every choice of units.
     pub fn solve(
         &mut self,
         p: &M::Params,
@@ -291,8 +346,10 @@ impl<M: Model> PeriodicSolver<M> {
                 reason: "the residual at the initial guess is not finite".into(),
             };
         }
+        // The size of the last Newton step (natural units).
+        let mut last_step = f64::INFINITY;
         for it in 0..opts.max_iterations {
-            if r <= opts.tolerance {
+            if r == 0.0 {
                 return Termination::Converged {
                     iterations: it,
                     residual: r,
@@ -305,6 +362,8 @@ impl<M: Model> PeriodicSolver<M> {
                     reason: s.reason.into(),
                 };
             }
+            let size = self.step_size(points, Self::length_scale(p, points), opts.tolerance);
+            last_step = size;
             for ((t, pt), d) in self.trial.iter_mut().zip(points.iter()).zip(&self.delta) {
                 *t = SwitchingPoint {
                     x: pt.x + d[0],
@@ -314,6 +373,19 @@ impl<M: Model> PeriodicSolver<M> {
             let mut trial_evals = std::mem::take(&mut self.trial_evals);
             let rt = self.evaluate_all(p, &self.trial, &mut trial_evals);
             self.trial_evals = trial_evals;
+            if size <= opts.tolerance {
+                // The point is within about `size` of the solution: take the
+                // (round-off sized) step unless it makes the residual worse.
+                if rt <= r {
+                    points.copy_from_slice(&self.trial);
+                    std::mem::swap(&mut self.evals, &mut self.trial_evals);
+                    r = rt;
+                }
+                return Termination::Converged {
+                    iterations: it + 1,
+                    residual: r,
+                };
+            }
             if rt < r {
                 points.copy_from_slice(&self.trial);
                 std::mem::swap(&mut self.evals, &mut self.trial_evals);
@@ -344,8 +416,10 @@ impl<M: Model> PeriodicSolver<M> {
                     r = self.evaluate_all(p, points, &mut evals);
                     self.evals = evals;
                 }
-                None if r <= 1e3 * opts.tolerance => {
-                    // Stagnation at round-off just above the tolerance.
+                None if size <= 1e3 * opts.tolerance => {
+                    // Stagnation at round-off: the step is within a factor
+                    // 1e3 of the tolerance and no fraction of it decreases
+                    // the residual.
                     return Termination::Converged {
                         iterations: it + 1,
                         residual: r,
@@ -360,17 +434,13 @@ impl<M: Model> PeriodicSolver<M> {
                 }
             }
         }
-        if r <= opts.tolerance {
-            Termination::Converged {
-                iterations: opts.max_iterations,
-                residual: r,
-            }
-        } else {
-            Termination::NotConverged {
-                iterations: opts.max_iterations,
-                residual: r,
-                reason: format!("no convergence in {} iterations", opts.max_iterations),
-            }
+        Termination::NotConverged {
+            iterations: opts.max_iterations,
+            residual: r,
+            reason: format!(
+                "no convergence in {} iterations (last Newton step {last_step:.3e} in natural units)",
+                opts.max_iterations
+            ),
         }
     }
 

@@ -15,7 +15,7 @@
 
 use serde::Serialize;
 
-use crate::crossing::{first_root, Probe, RootKind};
+use crate::crossing::{first_root, touch_extremum, Probe, Root, RootKind};
 use crate::model::{Coefficients, Model, Oscillator};
 use crate::param::{ParamError, ParamSet};
 
@@ -27,6 +27,15 @@ pub enum Location {
     Domain(usize),
     /// Stuck on the stick boundary.
     Stick,
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Location::Domain(j) => write!(f, "domain {j} (index, lowest band first)"),
+            Location::Stick => f.write_str("stick"),
+        }
+    }
 }
 
 /// What happened at an event.
@@ -93,17 +102,33 @@ pub enum SimError {
         /// phase
         phase: f64,
     },
-    /// The state became NaN or infinite (e.g. growth under negative damping).
-    #[error("the motion blows up (no longer finite) at phase {phase:.6} in {location:?} (x = {x:.3e}, v = {v:.3e})")]
+    /// The state became NaN or infinite (e.g. growth under negative damping):
+    /// where (phase, time, domain or stick), and the last finite state of
+    /// the segment (bisected to the rounding of the phase).
+    #[error(
+        "the motion blows up (no longer finite) at W t = {phase:.9e} (t = {time:.6e}) in {location}: \
+         (x, v) = ({x:.3e}, {v:.3e}) there; last finite state x = {last_x:.6e}, v = {last_v:.6e} \
+         at W t = {last_phase:.9e}"
+    )]
     NotFinite {
-        /// Phase.
+        /// Phase `W t` where the state, its acceleration or the bound on
+        /// the acceleration's rate is no longer finite.
         phase: f64,
-        /// Where.
+        /// Time `t = phase / W`.
+        time: f64,
+        /// Where: the domain or the stick.
         location: Location,
-        /// x
+        /// x there (NaN or infinite; finite if only the acceleration or
+        /// the bound overflowed: then `last_*` is this state).
         x: f64,
-        /// v
+        /// v there.
         v: f64,
+        /// Largest phase of the segment at which the state is still finite.
+        last_phase: f64,
+        /// x at `last_phase`.
+        last_x: f64,
+        /// v at `last_phase`.
+        last_v: f64,
     },
     /// More events than allowed before the end phase (chattering or a too long run).
     #[error("more than {limit} events before phase {phase}")]
@@ -133,6 +158,50 @@ pub enum SimError {
 /// `d_j` is huge and the search would run for hours (a typed error instead).
 pub const MAX_STEPS_PER_PERIOD: f64 = 1e7;
 
+/// Where a graze found at `root` is reported, and where the search resumes
+/// after it, so that one tangency is one graze: reported at the touch's
+/// extremum ([`touch_extremum`]: the search may find a flat touch a little
+/// before it, or, where rounding hides an exact touch, just after it); the
+/// search resumes once the touching function is back inside its band by more
+/// than the graze tolerance (or turns towards the boundary again), since
+/// anything it does before that is the same touch, within the tolerance.
+/// The other function is searched on the skipped stretch: if it has a root
+/// there (a band narrower than the touch's reach) the graze is reported where
+/// found and the search resumes just after it.
+fn graze_phase(
+    probe: &impl Fn(f64) -> Probe,
+    bound: &impl Fn(f64, f64, &Probe) -> f64,
+    root: &Root,
+    step: f64,
+    graze_tol: f64,
+    inside: [f64; 2],
+) -> (f64, f64) {
+    let k = root.which;
+    let side = inside[k];
+    let at = touch_extremum(probe, root.phase, side, step);
+    // Back inside by more than the tolerance, doubling the distance.
+    let mut w = (step * 1e-9).max(4.0 * f64::EPSILON * at.abs());
+    let resume = loop {
+        let b = at + w;
+        let p = probe(b);
+        let inward = p.dh == 0.0 || (p.dh > 0.0) == (side > 0.0);
+        let back_inside = p.h[k] * side > graze_tol || p.h[k].is_nan();
+        if back_inside || !inward || w >= step {
+            break b;
+        }
+        w *= 2.0;
+    };
+    let masked = |phi: f64| {
+        let mut p = probe(phi);
+        p.h[k] = f64::INFINITY;
+        p
+    };
+    if first_root(&masked, bound, root.phase, resume, step, graze_tol).is_some() {
+        return (root.phase, root.phase + step * 1e-9);
+    }
+    (at, resume)
+}
+
 fn unresolved(phase: f64, location: Location) -> SimError {
     SimError::Unresolvable {
         phase,
@@ -146,6 +215,8 @@ fn unresolved(phase: f64, location: Location) -> SimError {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimOptions {
     /// How close to a boundary a tangent touch must come to count as a graze.
+    /// A touch is one `Graze` event, at its extremum; the search resumes once
+    /// the motion is back inside by more than this.
     pub graze_tol: f64,
     /// At most this many events per call of [`Simulator::run`].
     pub max_events: usize,
@@ -370,6 +441,8 @@ impl<M: Model> Simulator<M> {
                         ),
                     });
                 }
+                // Inside the band: v − V_lower > 0, v − V_upper < 0.
+                let inside = [1.0, -1.0];
                 let mut from = seg.search_from;
                 let root = loop {
                     match first_root(&probe, &bound, from, phase_limit, step, self.opts.graze_tol) {
@@ -388,12 +461,7 @@ impl<M: Model> Simulator<M> {
                 }
                 let (x, v) = self.state_at(seg, root.phase);
                 if root.kind == RootKind::NotFinite || !(x.is_finite() && v.is_finite()) {
-                    return Err(SimError::NotFinite {
-                        phase: root.phase,
-                        location: seg.location,
-                        x,
-                        v,
-                    });
+                    return Err(self.blow_up(seg, root.phase));
                 }
                 let k = if root.which == 0 {
                     info.lower
@@ -403,8 +471,11 @@ impl<M: Model> Simulator<M> {
                 .expect("root of a present boundary");
                 let vb = self.velocities[k];
                 if root.kind == RootKind::Graze {
+                    let (at, resume) =
+                        graze_phase(&probe, &bound, &root, step, self.opts.graze_tol, inside);
+                    let (x, v) = self.state_at(seg, at);
                     let event = Event {
-                        phase: root.phase,
+                        phase: at,
                         x,
                         v,
                         boundary: k,
@@ -413,7 +484,7 @@ impl<M: Model> Simulator<M> {
                         after: seg.location,
                     };
                     let next = Segment {
-                        search_from: root.phase + step * 1e-9,
+                        search_from: resume,
                         ..*seg
                     };
                     return Ok(Some((event, next)));
@@ -472,6 +543,9 @@ impl<M: Model> Simulator<M> {
                     }
                 };
                 let bound = |_phi: f64, _delta: f64, _p: &Probe| a0.abs();
+                // Stuck: |Fnf| < as, so Fnf − as < 0 and Fnf + as > 0.
+                let inside = [-1.0, 1.0];
+                let step = std::f64::consts::FRAC_PI_4;
                 // A stick holds only while `|Fnf| < as`. Where a stick starts
                 // with `Fnf` at or beyond a bound and moving outwards (a flow that
                 // arrives where `|Fnf|` is the kinetic level and `as = ak`), or
@@ -498,7 +572,7 @@ impl<M: Model> Simulator<M> {
                         &bound,
                         seg.search_from,
                         phase_limit,
-                        std::f64::consts::FRAC_PI_4,
+                        step,
                         self.opts.graze_tol,
                     )
                 });
@@ -510,17 +584,15 @@ impl<M: Model> Simulator<M> {
                 }
                 let (x, _) = self.state_at(seg, root.phase);
                 if root.kind == RootKind::NotFinite || !x.is_finite() {
-                    return Err(SimError::NotFinite {
-                        phase: root.phase,
-                        location: seg.location,
-                        x,
-                        v: vs,
-                    });
+                    return Err(self.blow_up(seg, root.phase));
                 }
                 if root.kind == RootKind::Graze {
                     // |Fnf| touches as without exceeding it: the stick persists.
+                    let (at, resume) =
+                        graze_phase(&probe, &bound, &root, step, self.opts.graze_tol, inside);
+                    let (x, _) = self.state_at(seg, at);
                     let event = Event {
-                        phase: root.phase,
+                        phase: at,
                         x,
                         v: vs,
                         boundary: k,
@@ -529,7 +601,7 @@ impl<M: Model> Simulator<M> {
                         after: Location::Stick,
                     };
                     let next = Segment {
-                        search_from: root.phase + 1e-9,
+                        search_from: resume,
                         ..*seg
                     };
                     return Ok(Some((event, next)));
@@ -561,12 +633,46 @@ impl<M: Model> Simulator<M> {
         if x.is_finite() && v.is_finite() {
             Ok(())
         } else {
-            Err(SimError::NotFinite {
-                phase,
-                location: seg.location,
-                x,
-                v,
-            })
+            Err(self.blow_up(seg, phase))
+        }
+    }
+
+    /// The error for a segment whose state is no longer finite at `phase`:
+    /// the last finite state is located by bisection between the segment's
+    /// start (finite) and `phase`, to the rounding of the phase.
+    fn blow_up(&self, seg: &Segment, phase: f64) -> SimError {
+        let finite = |phi: f64| {
+            let (x, v) = self.state_at(seg, phi);
+            x.is_finite() && v.is_finite()
+        };
+        let (mut lo, mut hi) = (seg.phase, phase);
+        if finite(hi) {
+            // Only the bound on the rate overflowed: the state itself is finite here.
+            lo = hi;
+        } else {
+            loop {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if finite(mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+        }
+        let (x, v) = self.state_at(seg, phase);
+        let (last_x, last_v) = self.state_at(seg, lo);
+        SimError::NotFinite {
+            phase,
+            time: phase / self.osc.frequency,
+            location: seg.location,
+            x,
+            v,
+            last_phase: lo,
+            last_x,
+            last_v,
         }
     }
 

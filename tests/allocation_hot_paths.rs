@@ -1,7 +1,7 @@
 //! The documented allocation-free hot paths allocate nothing, counted by a
 //! global allocator: after constructing a `PeriodicSolver` and a
-//! `Simulator`, one Newton direction, one damped Newton step (and the
-//! residual and Poincaré-map Jacobian), and `Simulator::next_event` for
+//! `Simulator`, one Newton direction, one damped Newton step, a whole
+//! converging Newton solve (and the residual and Poincaré-map Jacobian), and `Simulator::next_event` for
 //! domain segments and for stick segments.
 //!
 //! The count is kept per thread, so tests running in parallel (the test
@@ -11,7 +11,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use stickslip::models::paper::{Paper, Params};
-use stickslip::periodic::{PeriodicSolver, SwitchingPoint};
+use stickslip::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::simulate::{Location, SimOptions, Simulator};
 use stickslip::structure::Structure;
 use stickslip::Model;
@@ -141,6 +141,18 @@ fn newton_direction_and_step_allocate_nothing() {
             r < 1e-10 && r < r0,
             "{text}: Newton converges ({r0:e} -> {r:e})"
         );
+        // The whole solve, from a perturbed guess to convergence (the
+        // scale-invariant stopping test included), allocates nothing.
+        let mut guess: Vec<SwitchingPoint> = points
+            .iter()
+            .map(|q| SwitchingPoint {
+                phase: q.phase + 1e-3,
+                x: q.x * (1.0 + 1e-3),
+            })
+            .collect();
+        let (n, t) = allocations(|| solver.solve(&p, &mut guess, NewtonOptions::default()));
+        assert!(t.converged(), "{text}: {t:?}");
+        assert_eq!(n, 0, "{text}: PeriodicSolver::solve allocated {n} times");
         let (n, dp) = allocations(|| solver.poincare_jacobian(&p, &points));
         assert!(dp.is_ok());
         assert_eq!(n, 0, "{text}: poincare_jacobian allocated {n} times");

