@@ -750,6 +750,30 @@ fn perturbations(n: usize, trials: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// The defaults moved by the draws `t` in [-1, 1], each kept inside its
+/// parameter's bounds: a value outside them is pulled back towards the
+/// default (which satisfies them) by halving the step. The continuity check
+/// must only try valid parameter values: a Stribeck law `exp(-|v - V| / vs)`
+/// with `vs` pushed below zero is not a law of the model at all.
+fn perturbed(model: &Model, defaults: &[f64], t: &[f64]) -> Vec<f64> {
+    defaults
+        .iter()
+        .zip(t)
+        .zip(&model.params)
+        .map(|((&d, &u), p)| {
+            let mut step = d * 0.3 * u + 0.1 * u;
+            for _ in 0..60 {
+                let x = d + step;
+                if p.bounds.iter().all(|&(op, b)| satisfies(x, op, b)) {
+                    return x;
+                }
+                step *= 0.5;
+            }
+            d
+        })
+        .collect()
+}
+
 fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
     let mut g = inst.graph.clone();
     let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
@@ -784,11 +808,7 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             continue;
         }
         for t in &trials {
-            let p: Vec<f64> = defaults
-                .iter()
-                .zip(t)
-                .map(|(d, u)| d * (1.0 + 0.3 * u) + 0.1 * u)
-                .collect();
+            let p = perturbed(model, &defaults, t);
             let jv = g.eval(jump, &p, &[]);
             let sc = 1.0 + g.eval(fa, &p, &[]).abs();
             if jv.abs() > 1e-9 * sc {
