@@ -125,3 +125,20 @@ impl Diagnostics {
             .collect()
     }
 }
+
+/// A number for a message: shortest round-trip, but rounded to 12
+/// significant digits first, so that the noise of arithmetic does not show
+/// (`3.7700000000000005` prints as `3.77`); non-finite values print as
+/// `inf`, `-inf`, `NaN`. Every checker message formats numbers with this.
+pub fn num(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return format!("{x}");
+    }
+    let rounded: f64 = format!("{x:.11e}").parse().unwrap_or(x);
+    let a = rounded.abs();
+    if (1e-5..1e16).contains(&a) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
+    }
+}
