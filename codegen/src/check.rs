@@ -28,7 +28,7 @@ use quote::ToTokens;
 use syn::spanned::Spanned;
 use syn::Expr;
 
-use crate::diagnostic::Diagnostics;
+use crate::diagnostic::{num, Diagnostics};
 use crate::expr::Graph;
 use crate::instance::{lower_instance, Instance, LAW_V};
 use crate::lower::{lower, Scope};
@@ -94,10 +94,10 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                                 *span,
                                 format!(
                                     "the default {} of `{}` violates its bound {} {}",
-                                    d,
+                                    num(d),
                                     p.name,
                                     op_str(*op),
-                                    b
+                                    num(b)
                                 ),
                             );
                         }
@@ -407,7 +407,7 @@ fn constant(
     match g.as_const(id) {
         Some(x) if x.is_finite() => Some(x),
         Some(x) => {
-            diags.error(e.span(), format!("{ctx} is {x}, not a finite number"));
+            diags.error(e.span(), format!("{ctx} is {}, not a finite number", num(x)));
             None
         }
         None => {
@@ -512,8 +512,9 @@ fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             diags.error(
                 e.span(),
                 format!(
-                    "the {what} `{}` is {v} at the defaults; it must be positive",
-                    e.to_token_stream()
+                    "the {what} `{}` is {} at the defaults; it must be positive",
+                    e.to_token_stream(),
+                    num(v)
                 ),
             );
         }
@@ -536,7 +537,9 @@ fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) 
                 b.span,
                 format!(
                     "`{}` and `{}` have the same velocity {} at the defaults",
-                    a.label, b.label, vel[w[0]]
+                    a.label,
+                    b.label,
+                    num(vel[w[0]])
                 ),
             );
         }
@@ -548,7 +551,8 @@ fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) 
                 b.velocity.span(),
                 format!(
                     "the velocity of `{}` is {} at the defaults",
-                    b.label, vel[i]
+                    b.label,
+                    num(vel[i])
                 ),
             );
         }
@@ -793,15 +797,16 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
         let (la, lb) = (model.domains[above].label, model.domains[below].label);
         let at_defaults = g.eval(jump, &defaults, &[]);
         let scale = 1.0 + g.eval(fa, &defaults, &[]).abs();
-        if at_defaults.abs() > 1e-12 * scale {
+        // NaN (a law undefined at the boundary) is a jump too.
+        if !(at_defaults.abs() <= 1e-12 * scale) {
             diags.error(
                 b.span,
                 format!(
                     "kinetic friction jumps at `{}` (domain {lb} gives {}, domain {la} gives {}), but `{}` is not a stick boundary: \
                      make the laws meet there or declare `stick BOUND`",
                     b.label,
-                    g.eval(fb, &defaults, &[]),
-                    g.eval(fa, &defaults, &[]),
+                    num(g.eval(fb, &defaults, &[])),
+                    num(g.eval(fa, &defaults, &[])),
                     b.label
                 ),
             );
@@ -847,10 +852,11 @@ fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             diags.error(
                 e.span(),
                 format!(
-                    "the static bound `{}` = {s} is below the kinetic friction level {} {side} `{}` (domain {}): \
+                    "the static bound `{}` = {} is below the kinetic friction level {} {side} `{}` (domain {}): \
                      static friction must be at least kinetic",
                     e.to_token_stream(),
-                    level.abs(),
+                    num(s),
+                    num(level.abs()),
                     b.label,
                     model.domains[j].label
                 ),
