@@ -32,7 +32,7 @@ use crate::diagnostic::{num, Diagnostics};
 use crate::expr::Graph;
 use crate::instance::{lower_instance, Instance, LAW_V};
 use crate::lower::{lower, Scope};
-use crate::model::{BoundOp, Boundary, Derived, Domain, Mapping, Model, Oscillator, Param, Scene};
+use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param, Scene};
 use crate::parse::{Item, ModelAst};
 
 /// Check a parsed model. Returns `None` when any error was found.
@@ -928,42 +928,24 @@ fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics
     })
 }
 
-/// Parse `P_{3_31 0_11 3_13 4_33}` or `3_31 0_11 3_13 4_33` into mapping
-/// indices (as written, i.e. the last one is applied first), checking that
-/// each mapping ends on the boundary where the next one starts.
+/// Parse `P_{3_31 0_11 3_13 4_33}` (or `P{..}`, or the names alone) into
+/// mapping indices as written (the last one is applied first), by the
+/// grammar the runtime uses ([`crate::structure`]): each mapping ends on the
+/// boundary where the next one starts, and a stick mapping is followed by a
+/// mapping into a domain.
 pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> {
-    let t = text.trim();
-    let inner = t
-        .strip_prefix("P_{")
-        .and_then(|r| r.strip_suffix('}'))
-        .unwrap_or(t);
-    let mut out = Vec::new();
-    for tok in inner.split_whitespace() {
-        match model.mappings.iter().position(|m| m.name == tok) {
-            Some(i) => out.push(i),
-            None => {
-                let known: Vec<&str> = model.mappings.iter().map(|m| m.name.as_str()).collect();
-                return Err(format!(
-                    "`{tok}` is not a mapping of model `{}` (it has {})",
-                    model.name,
-                    known.join(", ")
-                ));
-            }
-        }
-    }
-    if out.is_empty() {
-        return Err("an empty mapping structure".into());
-    }
-    // Application order is right to left.
-    let applied: Vec<&Mapping> = out.iter().rev().map(|&i| &model.mappings[i]).collect();
-    for k in 0..applied.len() {
-        let (a, b) = (applied[k], applied[(k + 1) % applied.len()]);
-        if a.to != b.from {
-            return Err(format!(
-                "{} ends on {}, but {} starts on {}",
-                a.name, model.boundaries[a.to].label, b.name, model.boundaries[b.from].label
-            ));
-        }
-    }
-    Ok(out)
+    let views: Vec<crate::structure::MappingView> = model
+        .mappings
+        .iter()
+        .map(|m| crate::structure::MappingView {
+            name: &m.name,
+            from: m.from,
+            to: m.to,
+            domain_above_from: m.domain.map(|j| model.domains[j].lower == Some(m.from)),
+        })
+        .collect();
+    let labels: Vec<&str> = model.boundaries.iter().map(|b| b.label.as_str()).collect();
+    let applied = crate::structure::parse(&model.name, &views, &labels, text)
+        .map_err(|e| e.to_string())?;
+    Ok(applied.iter().rev().map(|&(i, _)| i).collect())
 }

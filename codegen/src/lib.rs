@@ -14,35 +14,54 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+#[cfg(feature = "generator")]
 pub mod check;
+#[cfg(feature = "generator")]
 pub mod diagnostic;
+#[cfg(feature = "generator")]
 pub mod emit;
+#[cfg(feature = "generator")]
 pub mod equations;
+#[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod expr;
+#[cfg(feature = "generator")]
 pub mod instance;
+#[cfg(feature = "generator")]
 pub mod lower;
+#[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod model;
+#[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod parse;
+#[cfg(feature = "generator")]
 pub mod pieces;
+pub mod structure;
 
+#[cfg(feature = "generator")]
 use std::path::Path;
+#[cfg(feature = "generator")]
 use std::str::FromStr;
 
+#[cfg(feature = "generator")]
 use proc_macro2::TokenStream;
 
+#[cfg(feature = "generator")]
 pub use diagnostic::{Diagnostic, Diagnostics};
+#[cfg(feature = "generator")]
 pub use emit::Options;
 
 /// Lints allowed on a generated module: parameter names keep the model's
 /// spelling (`V1`, `Q0`), folded constants keep every digit, and field or
 /// match shapes follow the model rather than style.
+#[cfg(feature = "generator")]
 pub const MODULE_LINTS: &str = "non_snake_case, clippy::excessive_precision, clippy::approx_constant, clippy::redundant_field_names, clippy::single_match, clippy::let_and_return";
+#[cfg(feature = "generator")]
 pub use model::Model;
 
 /// Parse and check a model from tokens.
+#[cfg(feature = "generator")]
 pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
     let mut diags = Diagnostics::new();
     let ast = parse::parse_model(tokens, &mut diags);
@@ -57,6 +76,7 @@ pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
 }
 
 /// Generate the Rust module body for the model in `tokens`.
+#[cfg(feature = "generator")]
 pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile, Diagnostics> {
     let model = model_from_tokens(tokens)?;
     let mut diags = Diagnostics::new();
@@ -74,6 +94,7 @@ pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile,
 /// Tokenize model source text. Outside a proc-macro (build scripts, tests)
 /// spans carry line and column; inside one, call
 /// `proc_macro2::fallback::force()` first to get them.
+#[cfg(feature = "generator")]
 pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
     TokenStream::from_str(source).map_err(|e| {
         let mut d = Diagnostics::new();
@@ -83,6 +104,7 @@ pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
 }
 
 /// A generated model read from a file.
+#[cfg(feature = "generator")]
 #[derive(Clone, Debug)]
 pub struct GeneratedFile {
     /// The model's name (`model NAME { .. }`).
@@ -96,6 +118,7 @@ pub struct GeneratedFile {
 }
 
 /// Where a generated model or scene lives in the generated module.
+#[cfg(feature = "generator")]
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct InstanceName {
     /// `paper` or `paper::sweep_w`.
@@ -109,6 +132,7 @@ pub struct InstanceName {
     pub smooth: bool,
 }
 
+#[cfg(feature = "generator")]
 fn instance_names(model: &Model) -> Vec<InstanceName> {
     let mut out = vec![InstanceName {
         name: model.name.clone(),
@@ -130,6 +154,7 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
 
 /// Read, check and generate a model file. On failure the error is the
 /// rendered report: `file:line:col`, the source line and a caret per error.
+#[cfg(feature = "generator")]
 pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
     let source = std::fs::read_to_string(path)
         .map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
@@ -137,6 +162,7 @@ pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String>
 }
 
 /// Like [`generate_file`], from source text; `origin` names the file in messages.
+#[cfg(feature = "generator")]
 pub fn generate_source(source: &str, origin: &str) -> Result<GeneratedFile, String> {
     let tokens = tokenize(source).map_err(|d| d.render(origin, source))?;
     generate(

@@ -494,10 +494,20 @@ fn expr(input: ParseStream) -> syn::Result<Expr> {
         let mut rest = *cursor;
         let mut out = Vec::new();
         while let Some((tt, next)) = rest.token_tree() {
-            if let TokenTree::Punct(p) = &tt {
-                if p.as_char() == ',' || p.as_char() == ';' {
-                    break;
+            // The expression ends before a `,` or `;`, and before an operand
+            // that directly follows one (`3.0 3.0`, `3.0 param ..`: the item's
+            // `;` is then reported missing there); a name followed by
+            // parentheses is a call.
+            let ends = match (&tt, out.last()) {
+                (TokenTree::Punct(p), _) => p.as_char() == ',' || p.as_char() == ';',
+                (TokenTree::Group(g), Some(TokenTree::Ident(_))) => {
+                    g.delimiter() != Delimiter::Parenthesis
                 }
+                (_, Some(prev)) => is_operand(prev),
+                (_, None) => false,
+            };
+            if ends {
+                break;
             }
             out.push(tt);
             rest = next;

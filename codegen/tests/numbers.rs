@@ -26,7 +26,7 @@ fn exp_deep() {
     let src = match which.as_str() {
         "paren" => COULOMB.replace("forcing: A", &format!("forcing: {}A{}", "(".repeat(5000), ")".repeat(5000))),
         "neg" => COULOMB.replace("forcing: A", &format!("forcing: {}A", "- ".repeat(5000))),
-        "sum" => COULOMB.replace("forcing: A", &format!("forcing: A{}", (1..=50000).map(|i| format!(" + 0.00001 * m * {i}.0")).collect::<String>())),
+        "sum" => COULOMB.replace("forcing: A", &format!("forcing: A{}", (1..=std::env::var("N").map(|n| n.parse().unwrap()).unwrap_or(50000)).map(|i| format!(" + 0.00001 * m * {i}.0")).collect::<String>())),
         _ => std::fs::read_to_string("../models/stribeck.ssm").unwrap().replace("vs = 0.4", "vs = 0.1"),
     };
     let t = std::time::Instant::now();
