@@ -12,6 +12,22 @@ pub struct Diagnostic {
     pub span: Span,
     /// What is wrong, in the model's terms.
     pub message: String,
+    /// Line and column (from 1) when there is no token to carry a span:
+    /// errors found in the source text before it is tokenized.
+    pub at: Option<(usize, usize)>,
+}
+
+impl Diagnostic {
+    /// Line (from 1) and column (from 1).
+    pub fn line_col(&self) -> (usize, usize) {
+        match self.at {
+            Some(at) => at,
+            None => {
+                let s = self.span.start();
+                (s.line, s.column + 1)
+            }
+        }
+    }
 }
 
 /// All errors found so far.
@@ -31,6 +47,16 @@ impl Diagnostics {
         self.list.push(Diagnostic {
             span,
             message: message.into(),
+            at: None,
+        });
+    }
+
+    /// Record an error at `line:col` (both from 1) of the source text.
+    pub fn error_at(&mut self, line: usize, col: usize, message: impl Into<String>) {
+        self.list.push(Diagnostic {
+            span: Span::call_site(),
+            message: message.into(),
+            at: Some((line, col)),
         });
     }
 
@@ -74,23 +100,22 @@ impl Diagnostics {
         let lines: Vec<&str> = source.lines().collect();
         let mut out = String::new();
         for d in &self.list {
-            let start = d.span.start();
-            let (line, col) = (start.line, start.column + 1);
+            let (line, col) = d.line_col();
             out.push_str(&format!(
                 "error: {}\n  --> {}:{}:{}\n",
                 d.message, file, line, col
             ));
             if let Some(text) = line.checked_sub(1).and_then(|i| lines.get(i)) {
                 let width = line.to_string().len();
-                let end = d.span.end();
-                let len = if end.line == start.line && end.column > start.column {
+                let (start, end) = (d.span.start(), d.span.end());
+                let len = if d.at.is_none() && end.line == start.line && end.column > start.column {
                     end.column - start.column
                 } else {
                     1
                 };
                 let pad: String = text
                     .chars()
-                    .take(start.column)
+                    .take(col - 1)
                     .map(|c| if c == '\t' { '\t' } else { ' ' })
                     .collect();
                 out.push_str(&format!(
@@ -119,8 +144,8 @@ impl Diagnostics {
         self.list
             .iter()
             .map(|d| {
-                let s = d.span.start();
-                format!("{}:{}:{}: {}", file, s.line, s.column + 1, d.message)
+                let (line, col) = d.line_col();
+                format!("{}:{}:{}: {}", file, line, col, d.message)
             })
             .collect()
     }

@@ -37,6 +37,8 @@ pub mod model;
 pub mod parse;
 #[cfg(feature = "generator")]
 pub mod pieces;
+#[cfg(feature = "generator")]
+pub mod source;
 pub mod structure;
 
 #[cfg(feature = "generator")]
@@ -63,8 +65,27 @@ pub use model::Model;
 /// Parse and check a model from tokens.
 #[cfg(feature = "generator")]
 pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
+    model_named(tokens, None)
+}
+
+/// [`model_from_tokens`]; with `file`, the model must be named like it
+/// (`models/NAME.ssm` holds `model NAME`), else an error at the name.
+#[cfg(feature = "generator")]
+fn model_named(tokens: TokenStream, file: Option<&str>) -> Result<Model, Diagnostics> {
     let mut diags = Diagnostics::new();
     let ast = parse::parse_model(tokens, &mut diags);
+    if let (Some(ast), Some(stem)) = (&ast, file) {
+        let name = ast.name.to_string();
+        if name != stem {
+            diags.error(
+                ast.name.span(),
+                format!(
+                    "the model is named `{name}`, but its file is `{stem}.ssm`: \
+                     name the file `{name}.ssm` (or the model `{stem}`)"
+                ),
+            );
+        }
+    }
     if !diags.is_empty() {
         return Err(diags);
     }
@@ -78,7 +99,16 @@ pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
 /// Generate the Rust module body for the model in `tokens`.
 #[cfg(feature = "generator")]
 pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile, Diagnostics> {
-    let model = model_from_tokens(tokens)?;
+    generate_named(tokens, options, None)
+}
+
+#[cfg(feature = "generator")]
+fn generate_named(
+    tokens: TokenStream,
+    options: &Options,
+    file: Option<&str>,
+) -> Result<GeneratedFile, Diagnostics> {
+    let model = model_named(tokens, file)?;
     let mut diags = Diagnostics::new();
     match emit::emit(&model, options, &mut diags) {
         Some(code) if diags.is_empty() => Ok(GeneratedFile {
@@ -95,10 +125,15 @@ pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile,
 /// spans carry line and column; inside one, call
 /// `proc_macro2::fallback::force()` first to get them.
 #[cfg(feature = "generator")]
+///
+/// Delimiters that do not balance are located by [`source::unbalanced`]
+/// (the tokenizer's own error does not say where).
 pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
     TokenStream::from_str(source).map_err(|e| {
         let mut d = Diagnostics::new();
-        d.error(e.span(), format!("cannot tokenize the model: {e}"));
+        if !source::unbalanced(source, &mut d) {
+            d.error(e.span(), format!("cannot tokenize the model: {e}"));
+        }
         d
     })
 }
@@ -155,21 +190,35 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
 /// Read, check and generate a model file. On failure the error is the
 /// rendered report: `file:line:col`, the source line and a caret per error.
 #[cfg(feature = "generator")]
+///
+/// The file is read as bytes: a byte that is not UTF-8 is reported at its
+/// line and column; a byte order mark is dropped. The model must be named
+/// after the file (`NAME.ssm` holds `model NAME`). The build script, the
+/// macro's `file = ".."` and `stickslip check` all read model files here.
 pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
-    let source = std::fs::read_to_string(path)
+    let bytes = std::fs::read(path)
         .map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
-    generate_source(&source, origin)
+    let source = source::decode(&bytes, origin)?;
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+    generate_text(&source, origin, stem.as_deref())
 }
 
 /// Like [`generate_file`], from source text; `origin` names the file in messages.
 #[cfg(feature = "generator")]
 pub fn generate_source(source: &str, origin: &str) -> Result<GeneratedFile, String> {
+    generate_text(source, origin, None)
+}
+
+#[cfg(feature = "generator")]
+fn generate_text(source: &str, origin: &str, file: Option<&str>) -> Result<GeneratedFile, String> {
+    let source = source::strip_bom(source);
     let tokens = tokenize(source).map_err(|d| d.render(origin, source))?;
-    generate(
+    generate_named(
         tokens,
         &Options {
             origin: origin.to_string(),
         },
+        file,
     )
     .map_err(|d| d.render(origin, source))
 }

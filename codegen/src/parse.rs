@@ -503,6 +503,8 @@ fn expr(input: ParseStream) -> syn::Result<Expr> {
                 (TokenTree::Group(g), Some(TokenTree::Ident(_))) => {
                     g.delimiter() != Delimiter::Parenthesis
                 }
+                // `#[..]` (an attribute, rejected with its own message) is no operand.
+                (_, Some(TokenTree::Group(g))) if g.delimiter() == Delimiter::Bracket => false,
                 (_, Some(prev)) => is_operand(prev),
                 (_, None) => false,
             };

@@ -298,9 +298,13 @@ fn attribute_other_than_doc_comment() {
 
 #[test]
 fn unbalanced_delimiter() {
-    // Tokenizing fails as a whole; the location is where it was noticed.
+    // Located by scanning the delimiters: where it was noticed, naming the opener.
     let src = with(&[("- FN * muk) / m;\n}", "- FN * muk / m;\n}")]);
-    assert_error(&src, "32:1", &["cannot tokenize the model"]);
+    assert_error(
+        &src,
+        "32:1",
+        &["mismatched closing `}`: the `(` at 31:29 is still open"],
+    );
 }
 
 // ------------------------------------------------------------------- names
