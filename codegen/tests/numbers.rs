@@ -190,7 +190,7 @@ fn value_at_the_defaults_that_is_not_finite_is_rejected_with_the_names() {
     let src = edit(COULOMB, &[("param V = 1.0;", "param V = 1.0; let q = 1.0 / (V - 1.0);")]);
     assert_error(
         &src,
-        "9:30",
+        "9:28",
         "derived quantity `q`: `1.0 / (V - 1.0)` evaluates to inf at the defaults, with V = 1",
     );
 }

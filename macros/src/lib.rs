@@ -48,17 +48,18 @@ fn generate(input: Input) -> syn::Result<(GeneratedFile, Option<String>)> {
         Input::File(lit) => {
             let dir = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_else(|_| ".".into());
             let path = std::path::Path::new(&dir).join(lit.value());
-            let source = std::fs::read_to_string(&path).map_err(|e| {
-                syn::Error::new(
+            if let Err(e) = std::fs::metadata(&path) {
+                return Err(syn::Error::new(
                     lit.span(),
                     format!("cannot read model file {}: {e}", path.display()),
-                )
-            })?;
+                ));
+            }
             // Tokens of a file read here have no spans in the caller's source:
             // use proc-macro2's own tokenizer for line/column information,
-            // and report at the path literal.
+            // and report at the path literal. `generate_file` reads the bytes
+            // (a non-UTF-8 byte is located) and checks the file's name.
             proc_macro2::fallback::force();
-            let result = stickslip_codegen::generate_source(&source, &lit.value());
+            let result = stickslip_codegen::generate_file(&path, &lit.value());
             proc_macro2::fallback::unforce();
             result
                 .map(|g| (g, Some(path.display().to_string())))
