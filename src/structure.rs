@@ -65,7 +65,9 @@ impl Structure {
                         grammar::Exit::Below => Side::Below,
                     };
                     info.mapping_index(info.mappings[i].name, Some(side))
-                        .ok_or_else(|| StructureError::StickExit(info.mappings[i].name.to_string()))?
+                        .ok_or_else(|| {
+                            StructureError::StickExit(info.mappings[i].name.to_string())
+                        })?
                 }
             };
             steps.push(idx);

@@ -407,7 +407,10 @@ fn constant(
     match g.as_const(id) {
         Some(x) if x.is_finite() => Some(x),
         Some(x) => {
-            diags.error(e.span(), format!("{ctx} is {}, not a finite number", num(x)));
+            diags.error(
+                e.span(),
+                format!("{ctx} is {}, not a finite number", num(x)),
+            );
             None
         }
         None => {
@@ -798,7 +801,7 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
         let at_defaults = g.eval(jump, &defaults, &[]);
         let scale = 1.0 + g.eval(fa, &defaults, &[]).abs();
         // NaN (a law undefined at the boundary) is a jump too.
-        if !(at_defaults.abs() <= 1e-12 * scale) {
+        if at_defaults.is_nan() || at_defaults.abs() > 1e-12 * scale {
             diags.error(
                 b.span,
                 format!(
@@ -945,7 +948,7 @@ pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> 
         })
         .collect();
     let labels: Vec<&str> = model.boundaries.iter().map(|b| b.label.as_str()).collect();
-    let applied = crate::structure::parse(&model.name, &views, &labels, text)
-        .map_err(|e| e.to_string())?;
+    let applied =
+        crate::structure::parse(&model.name, &views, &labels, text).map_err(|e| e.to_string())?;
     Ok(applied.iter().rev().map(|&(i, _)| i).collect())
 }

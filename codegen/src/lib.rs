@@ -196,8 +196,8 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
 /// after the file (`NAME.ssm` holds `model NAME`). The build script, the
 /// macro's `file = ".."` and `stickslip check` all read model files here.
 pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
+    let bytes =
+        std::fs::read(path).map_err(|e| format!("error: cannot read {}: {e}\n", path.display()))?;
     let source = source::decode(&bytes, origin)?;
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
     generate_text(&source, origin, stem.as_deref())

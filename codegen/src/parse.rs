@@ -300,7 +300,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
             while !body.is_empty() {
                 let key: Ident = body.parse()?;
                 body.parse::<Token![:]>()?;
-                let value = expr(&body)?;
+                let value = expr(body)?;
                 fields.push((key, value));
                 if body.is_empty() {
                     break;

@@ -107,7 +107,10 @@ pub fn check_smooth(model: &Model, diags: &mut Diagnostics) {
         if !level.is_finite() {
             diags.error(
                 law.kinetic.span(),
-                format!("the kinetic law is {} just {side} the belt speed", num(level)),
+                format!(
+                    "the kinetic law is {} just {side} the belt speed",
+                    num(level)
+                ),
             );
         } else if stick.is_nan() || stick < level.abs() - 1e-12 * (1.0 + level.abs()) {
             diags.error(

@@ -18,10 +18,7 @@ pub fn decode(bytes: &[u8], origin: &str) -> Result<String, String> {
             let good = &bytes[..e.valid_up_to()];
             let text = String::from_utf8_lossy(bytes);
             let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
-            let line_start = good
-                .iter()
-                .rposition(|&b| b == b'\n')
-                .map_or(0, |i| i + 1);
+            let line_start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
             let col = String::from_utf8_lossy(&good[line_start..]).chars().count() + 1;
             let mut d = Diagnostics::new();
             d.error_at(

@@ -145,14 +145,20 @@ fn folded_constant_that_overflows_is_rejected_at_the_operation() {
         "5:15",
         "the default of `A`: `exp (1000.0)` evaluates to inf",
     );
-    let src = edit(COULOMB, &[("param A = 0.5;", "param A = 1.0 + 1e308 * 10.0;")]);
+    let src = edit(
+        COULOMB,
+        &[("param A = 0.5;", "param A = 1.0 + 1e308 * 10.0;")],
+    );
     assert_error(
         &src,
         "5:21",
         "the default of `A`: `1e308 * 10.0` evaluates to inf",
     );
     // 0 * inf is NaN, reported at the inf, not again at the product.
-    let src = edit(COULOMB, &[("param A = 0.5;", "param A = 0.0 * exp(800.0);")]);
+    let src = edit(
+        COULOMB,
+        &[("param A = 0.5;", "param A = 0.0 * exp(800.0);")],
+    );
     assert_error(
         &src,
         "5:21",
@@ -187,7 +193,10 @@ fn value_at_the_defaults_that_is_not_finite_is_rejected_with_the_names() {
     for (from, to, at, message) in cases {
         assert_error(&edit(COULOMB, &[(from, to)]), at, message);
     }
-    let src = edit(COULOMB, &[("param V = 1.0;", "param V = 1.0; let q = 1.0 / (V - 1.0);")]);
+    let src = edit(
+        COULOMB,
+        &[("param V = 1.0;", "param V = 1.0; let q = 1.0 / (V - 1.0);")],
+    );
     assert_error(
         &src,
         "9:28",
@@ -215,7 +224,10 @@ fn powi_exponent_beyond_i32_is_rejected_at_the_exponent() {
         "11:70",
         "the exponent 2147483648 of `powi` is out of range: it must fit in an i32 (|n| <= 2147483647)",
     );
-    let src = edit(COULOMB, &[("forcing: A,", "forcing: powi(A, -99999999999999999999),")]);
+    let src = edit(
+        COULOMB,
+        &[("forcing: A,", "forcing: powi(A, -99999999999999999999),")],
+    );
     assert_error(
         &src,
         "11:71",
@@ -234,7 +246,13 @@ fn powi_exponent_beyond_i32_is_rejected_at_the_exponent() {
 fn smooth_law_with_a_pole_in_its_range_is_rejected_at_the_law() {
     // 1 / (v - 2) has its pole at v = 2, inside V ± 8 = [-7, 9]: between
     // grid points, found exactly.
-    let src = edit(SMOOTH, &[("exp(-abs(v - V) / vs)) * g,\n", "exp(-abs(v - V) / vs)) * g + 0.01 / (v - 2.0001),\n")]);
+    let src = edit(
+        SMOOTH,
+        &[(
+            "exp(-abs(v - V) / vs)) * g,\n",
+            "exp(-abs(v - V) / vs)) * g + 0.01 / (v - 2.0001),\n",
+        )],
+    );
     assert_error(
         &src,
         "16:18",
@@ -242,7 +260,13 @@ fn smooth_law_with_a_pole_in_its_range_is_rejected_at_the_law() {
          a smooth law must be finite on V ± range",
     );
     // ln(v + 3) is -inf at v = -3 (a grid point) and NaN below.
-    let src = edit(SMOOTH, &[("exp(-abs(v - V) / vs)) * g,\n", "exp(-abs(v - V) / vs)) * g + 0.01 * ln(v + 3.0),\n")]);
+    let src = edit(
+        SMOOTH,
+        &[(
+            "exp(-abs(v - V) / vs)) * g,\n",
+            "exp(-abs(v - V) / vs)) * g + 0.01 * ln(v + 3.0),\n",
+        )],
+    );
     assert_error(
         &src,
         "16:18",
@@ -255,7 +279,13 @@ fn smooth_law_with_a_pole_in_its_range_is_rejected_at_the_law() {
 fn smooth_law_whose_second_derivative_is_infinite_at_the_range_end_is_rejected() {
     // sqrt(v + 7) is finite on [-7, 9], but its derivatives are infinite at
     // v = -7, the lower end of the range.
-    let src = edit(SMOOTH, &[("exp(-abs(v - V) / vs)) * g,\n", "exp(-abs(v - V) / vs)) * g + 0.01 * sqrt(v + 7.0),\n")]);
+    let src = edit(
+        SMOOTH,
+        &[(
+            "exp(-abs(v - V) / vs)) * g,\n",
+            "exp(-abs(v - V) / vs)) * g + 0.01 * sqrt(v + 7.0),\n",
+        )],
+    );
     assert_error(
         &src,
         "16:18",
@@ -263,7 +293,13 @@ fn smooth_law_whose_second_derivative_is_infinite_at_the_range_end_is_rejected()
          a smooth law must be finite on V ± range",
     );
     // Outside the range it is fine.
-    accepted(&edit(SMOOTH, &[("exp(-abs(v - V) / vs)) * g,\n", "exp(-abs(v - V) / vs)) * g + 0.01 * sqrt(v + 7.5),\n")]));
+    accepted(&edit(
+        SMOOTH,
+        &[(
+            "exp(-abs(v - V) / vs)) * g,\n",
+            "exp(-abs(v - V) / vs)) * g + 0.01 * sqrt(v + 7.5),\n",
+        )],
+    ));
 }
 
 #[test]
@@ -335,7 +371,10 @@ fn sum_of_fifty_thousand_terms_compiles_on_a_default_stack() {
     let code = on_default_stack(move || accepted(&src).code);
     // Every term reaches the generated code (the last ones too).
     for i in [1, 2, 25_000, 49_999, 50_000] {
-        assert!(code.contains(&format!("{i}.0")), "term {i} in the generated code");
+        assert!(
+            code.contains(&format!("{i}.0")),
+            "term {i} in the generated code"
+        );
     }
 }
 
@@ -343,13 +382,19 @@ fn sum_of_fifty_thousand_terms_compiles_on_a_default_stack() {
 
 #[test]
 fn attribute_inside_an_expression_is_rejected() {
-    let src = edit(COULOMB, &[("param A = 0.5;", "param A = #[cfg(any())] 0.5;")]);
+    let src = edit(
+        COULOMB,
+        &[("param A = 0.5;", "param A = #[cfg(any())] 0.5;")],
+    );
     assert_error(
         &src,
         "5:15",
         "attributes are not allowed inside an expression (in the default of `A`); only doc comments, and only on items",
     );
-    let src = edit(COULOMB, &[("forcing: A,", "forcing: A + #[cfg(any())] 0.5,")]);
+    let src = edit(
+        COULOMB,
+        &[("forcing: A,", "forcing: A + #[cfg(any())] 0.5,")],
+    );
     assert_error(
         &src,
         "11:66",
@@ -368,14 +413,21 @@ fn doc_comments_with_backslashes_and_quotes_compile() {
         ],
     );
     let g = accepted(&src);
-    assert!(g.doc.contains(r##"a \ b, "quoted", \n, "#, \\"##), "{}", g.doc);
+    assert!(
+        g.doc.contains(r##"a \ b, "quoted", \n, "#, \\"##),
+        "{}",
+        g.doc
+    );
     // The generated module parses as Rust.
     syn::parse_file(&g.code).expect("generated code parses");
 }
 
 #[test]
 fn byte_order_mark_does_not_shift_columns() {
-    let src = format!("\u{feff}{}", edit(COULOMB, &[("param A = 0.5;", "param A = q;")]));
+    let src = format!(
+        "\u{feff}{}",
+        edit(COULOMB, &[("param A = 0.5;", "param A = q;")])
+    );
     assert_error(
         &src,
         "5:15",
@@ -399,7 +451,10 @@ fn crlf_line_ends_and_tabs_keep_lines_and_columns() {
         "the default of `A` must be a number; it cannot refer to `q`",
     );
     let report = generate_source(&src, "test.ssm").unwrap_err();
-    assert!(report.contains("5 | \tparam A =\tq;\n  | \t         \t^\n"), "{report}");
+    assert!(
+        report.contains("5 | \tparam A =\tq;\n  | \t         \t^\n"),
+        "{report}"
+    );
 }
 
 fn temp_file(name: &str, bytes: &[u8]) -> std::path::PathBuf {
@@ -412,7 +467,9 @@ fn temp_file(name: &str, bytes: &[u8]) -> std::path::PathBuf {
 
 #[test]
 fn non_utf8_byte_is_located_at_its_line_and_column() {
-    let mut bytes = COULOMB.replace("param mu = 0.3;", "param mu = 0.3; // \u{e9}").into_bytes();
+    let mut bytes = COULOMB
+        .replace("param mu = 0.3;", "param mu = 0.3; // \u{e9}")
+        .into_bytes();
     // Replace the two UTF-8 bytes of é by a lone Latin-1 byte.
     let at = bytes.windows(2).position(|w| w == [0xc3, 0xa9]).expect("é");
     bytes.splice(at..at + 2, [0xe9]);
@@ -460,11 +517,15 @@ fn numbers_in_messages_are_rounded() {
     // Through the checker: the static bound below the kinetic level.
     let src = edit(
         COULOMB,
-        &[("stick 0.5", "stick 0.1 + 0.2"), ("param mu = 0.3;", "param mu = 0.37 + 0.1 * 34.0;")],
+        &[
+            ("stick 0.5", "stick 0.1 + 0.2"),
+            ("param mu = 0.3;", "param mu = 0.37 + 0.1 * 34.0;"),
+        ],
     );
     let errs = errors(&src);
     assert!(
-        errs.iter().any(|(m, _)| m.contains("= 0.3 is below the kinetic friction level 3.77 above")),
+        errs.iter()
+            .any(|(m, _)| m.contains("= 0.3 is below the kinetic friction level 3.77 above")),
         "{errs:?}"
     );
 }
@@ -478,11 +539,19 @@ fn unbalanced_brace_is_located_at_the_unclosed_delimiter() {
         "this `{` is never closed (the `}` on line 15 seems to belong to the `{` on line 1)",
     );
     let src = edit(COULOMB, &[("(v - V);", "(v - V));")]);
-    assert_error(&src, "13:45", "mismatched closing `)`: the `{` at 1:15 is still open");
+    assert_error(
+        &src,
+        "13:45",
+        "mismatched closing `)`: the `{` at 1:15 is still open",
+    );
     let src = format!("{COULOMB})");
     assert_error(&src, "16:1", "unexpected closing `)`: nothing is open here");
     let src = edit(COULOMB, &[("(v - V);", "(v - V];")]);
-    assert_error(&src, "13:44", "mismatched closing `]`: the `(` at 13:38 is still open");
+    assert_error(
+        &src,
+        "13:44",
+        "mismatched closing `]`: the `(` at 13:38 is still open",
+    );
 }
 
 #[test]
@@ -490,7 +559,10 @@ fn scene_structure_the_runtime_would_reject_is_rejected_at_the_string() {
     // Two stick mappings in a row: the runtime cannot choose an exit side.
     let src = edit(
         COULOMB,
-        &[("\n}\n", "\n    scene s { free: W; structures: \"P_{0_11 0_11}\", \"P{1_11 0_11}\"; }\n}\n")],
+        &[(
+            "\n}\n",
+            "\n    scene s { free: W; structures: \"P_{0_11 0_11}\", \"P{1_11 0_11}\"; }\n}\n",
+        )],
     );
     assert_error(
         &src,
@@ -499,7 +571,10 @@ fn scene_structure_the_runtime_would_reject_is_rejected_at_the_string() {
     );
     let src = edit(
         COULOMB,
-        &[("\n}\n", "\n    scene s { free: W; structures: \"P_{1_11 0_11\"; }\n}\n")],
+        &[(
+            "\n}\n",
+            "\n    scene s { free: W; structures: \"P_{1_11 0_11\"; }\n}\n",
+        )],
     );
     assert_error(
         &src,
