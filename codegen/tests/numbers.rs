@@ -308,7 +308,7 @@ fn stribeck_with_a_small_stribeck_velocity_builds_and_its_pieces_are_continuous(
     // check used to try vs < 0 and call the pieces discontinuous.
     let src = include_str!("../../models/stribeck.ssm");
     for vs in ["0.1", "0.05", "0.4"] {
-        let s = src.replace("param vs = 0.1, > 0;", &format!("param vs = {vs}, > 0;"));
+        let s = src.replace("param vs = 0.4, > 0;", &format!("param vs = {vs}, > 0;"));
         assert!(s.contains(&format!("vs = {vs},")));
         on_default_stack(move || generate_source(&s, "stribeck.ssm").map(|_| ()))
             .unwrap_or_else(|r| panic!("vs = {vs}: {r}"));
@@ -581,4 +581,35 @@ fn scene_structure_the_runtime_would_reject_is_rejected_at_the_string() {
         "15:36",
         "`P_{1_11 0_11` is not a structure: write `P_{3_31 0_11 3_13 4_33}` or the names alone",
     );
+}
+
+/// Known gap (issue 9 part 3 covers syntax depth only): depth through
+/// names. 5000 chained `let`s did not finish within 15 minutes in a debug
+/// build; run with `N=500 cargo test -- --ignored long_chain` to measure.
+#[test]
+#[ignore = "depth through chained lets is not bounded yet: slow"]
+fn long_chain_of_lets_gets_a_located_error_or_compiles() {
+    // Depth through names, not syntax: each `let` adds to the previous one.
+    let n: usize = std::env::var("N")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(5000);
+    let mut lets = String::from("param V = 1.0;\n");
+    for i in 1..=n {
+        let prev = if i == 1 {
+            "k".to_string()
+        } else {
+            format!("a{}", i - 1)
+        };
+        lets.push_str(&format!("    let a{i} = {prev} + {i}.0 * k;\n"));
+    }
+    let src = edit(
+        COULOMB,
+        &[
+            ("param V = 1.0;\n", &lets),
+            ("forcing: A,", &format!("forcing: a{n},")),
+        ],
+    );
+    let result = on_default_stack(move || generate_source(&src, "test.ssm").map(|g| g.code.len()));
+    eprintln!("{:?}", result.as_ref().map_err(|e| &e[..e.len().min(400)]));
 }
