@@ -46,26 +46,17 @@ fn main() {
                 failed = true;
             }
             Ok(generated) => {
+                // `generate_file` has checked that the file is named after the model.
                 let name = &generated.name;
-                let stem = file.file_stem().expect("stem").to_string_lossy();
-                if stem != name.as_str() {
-                    eprintln!("error: {origin} declares `model {name}`; name the file {name}.ssm");
-                    failed = true;
-                    continue;
-                }
                 write_if_changed(
                     &out.join("models").join(format!("{name}.rs")),
                     &generated.code,
                 );
-                let doc = generated
-                    .doc
-                    .lines()
-                    .next()
-                    .unwrap_or("A model.")
-                    .replace('"', "'");
+                // `{:?}` writes a Rust string literal: backslashes and quotes escaped.
+                let doc = generated.doc.lines().next().unwrap_or("A model.");
                 writeln!(
                     modules,
-                    "#[doc = \"{doc}\"]\n#[allow({lints})]\n\
+                    "#[doc = {doc:?}]\n#[allow({lints})]\n\
                      pub mod {module} {{ include!(concat!(env!(\"OUT_DIR\"), \"/models/{name}.rs\")); }}",
                     lints = stickslip_codegen::MODULE_LINTS,
                     module = generated.module

@@ -2,43 +2,13 @@
 //! paper's notation, applied right to left, validated against the model's
 //! topology.
 
+use stickslip_codegen::structure as grammar;
+
 use crate::model::{MappingKind, ModelInfo, Side};
 
-/// Why a structure was rejected.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum StructureError {
-    /// No mapping named.
-    #[error("an empty mapping structure")]
-    Empty,
-    /// A name that is not a mapping of the model.
-    #[error("`{name}` is not a mapping of `{model}` (it has {known})")]
-    UnknownMapping {
-        /// The name.
-        name: String,
-        /// The model.
-        model: String,
-        /// The model's mappings.
-        known: String,
-    },
-    /// Consecutive mappings do not meet.
-    #[error("{first} ends on {ends_on}, but {second} starts on {starts_on}")]
-    Disconnected {
-        /// The earlier mapping (in application order).
-        first: String,
-        /// Where it ends.
-        ends_on: String,
-        /// The mapping applied next.
-        second: String,
-        /// Where that one starts.
-        starts_on: String,
-    },
-    /// Two stick mappings in a row, or a stick mapping with nowhere to go.
-    #[error("the stick mapping {0} must be followed by a mapping that leaves the stick boundary into a domain")]
-    StickExit(String),
-    /// A period of zero forcing cycles.
-    #[error("the period N must be at least 1 forcing period")]
-    ZeroPeriod,
-}
+/// Why a structure was rejected (the grammar and its errors are shared with
+/// the model checker: `stickslip_codegen::structure`).
+pub use stickslip_codegen::structure::StructureError;
 
 /// A mapping structure with its period `N` (forcing periods per cycle).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -51,27 +21,13 @@ pub struct Structure {
 }
 
 impl Structure {
-    /// Parse `P_{3_31 0_11 3_13 4_33}` or `3_31 0_11 3_13 4_33` (applied right
-    /// to left: `4_33` first) for model `info`, with period `periods`.
+    /// Parse `P_{3_31 0_11 3_13 4_33}`, `P{..}` or `3_31 0_11 3_13 4_33`
+    /// (applied right to left: `4_33` first) for model `info`, with period
+    /// `periods`. The grammar is `stickslip_codegen::structure`, the one the
+    /// model checker applies to a scene's structures.
     pub fn parse(info: &ModelInfo, text: &str, periods: u32) -> Result<Self, StructureError> {
-        let t = text.trim();
-        let inner = t
-            .strip_prefix("P_{")
-            .or_else(|| t.strip_prefix("P{"))
-            .and_then(|r| r.strip_suffix('}'))
-            .unwrap_or(t);
-        let written: Vec<&str> = inner.split_whitespace().collect();
-        let mut names = Vec::with_capacity(written.len());
-        for w in written.iter().rev() {
-            if info.mapping_index(w, None).is_none() {
-                return Err(StructureError::UnknownMapping {
-                    name: w.to_string(),
-                    model: info.name.to_string(),
-                    known: info.mapping_names().join(", "),
-                });
-            }
-            names.push(*w);
-        }
+        let mut names = grammar::written_names(text)?;
+        names.reverse();
         Self::from_names(info, &names, periods)
     }
 
@@ -87,43 +43,34 @@ impl Structure {
         if periods == 0 {
             return Err(StructureError::ZeroPeriod);
         }
-        let m = applied.len();
-        let mut steps = Vec::with_capacity(m);
-        for k in 0..m {
-            let name = applied[k];
-            let first =
-                info.mapping_index(name, None)
-                    .ok_or_else(|| StructureError::UnknownMapping {
-                        name: name.to_string(),
-                        model: info.name.to_string(),
-                        known: info.mapping_names().join(", "),
-                    })?;
-            let idx = if info.mappings[first].kind == MappingKind::Stick {
-                let next = info.mappings[info
-                    .mapping_index(applied[(k + 1) % m], None)
-                    .expect("checked in turn")];
-                let side = match next.domain {
-                    Some(j) if info.domains[j].lower == Some(next.from) => Side::Above,
-                    Some(_) => Side::Below,
-                    None => return Err(StructureError::StickExit(name.to_string())),
-                };
-                info.mapping_index(name, Some(side))
-                    .expect("both stick exits are generated together")
-            } else {
-                first
+        let views: Vec<grammar::MappingView> = info
+            .mappings
+            .iter()
+            .map(|m| grammar::MappingView {
+                name: m.name,
+                from: m.from,
+                to: m.to,
+                domain_above_from: m.domain.map(|j| info.domains[j].lower == Some(m.from)),
+            })
+            .collect();
+        let labels: Vec<&str> = info.boundaries.iter().map(|b| b.label).collect();
+        let resolved = grammar::resolve(info.name, &views, &labels, applied)?;
+        let mut steps = Vec::with_capacity(resolved.len());
+        for (i, exit) in resolved {
+            let idx = match exit {
+                None => i,
+                Some(e) => {
+                    let side = match e {
+                        grammar::Exit::Above => Side::Above,
+                        grammar::Exit::Below => Side::Below,
+                    };
+                    info.mapping_index(info.mappings[i].name, Some(side))
+                        .ok_or_else(|| {
+                            StructureError::StickExit(info.mappings[i].name.to_string())
+                        })?
+                }
             };
             steps.push(idx);
-        }
-        for k in 0..m {
-            let (a, b) = (&info.mappings[steps[k]], &info.mappings[steps[(k + 1) % m]]);
-            if a.to != b.from {
-                return Err(StructureError::Disconnected {
-                    first: a.name.to_string(),
-                    ends_on: info.boundaries[a.to].label.to_string(),
-                    second: b.name.to_string(),
-                    starts_on: info.boundaries[b.from].label.to_string(),
-                });
-            }
         }
         Ok(Self { steps, periods })
     }

@@ -407,7 +407,7 @@ fn bad_input_is_rejected_with_a_clear_message() {
     );
     assert_rejected(
         &["orbit", "--structure", "P_{3_31 9_99}", "--set", "W=3.7"],
-        "`9_99` is not a mapping of `paper`",
+        "`9_99` is not a mapping of model `paper`",
     );
     assert_rejected(
         &[

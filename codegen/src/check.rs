@@ -28,11 +28,11 @@ use quote::ToTokens;
 use syn::spanned::Spanned;
 use syn::Expr;
 
-use crate::diagnostic::Diagnostics;
+use crate::diagnostic::{num, Diagnostics};
 use crate::expr::Graph;
 use crate::instance::{lower_instance, Instance, LAW_V};
 use crate::lower::{lower, Scope};
-use crate::model::{BoundOp, Boundary, Derived, Domain, Mapping, Model, Oscillator, Param, Scene};
+use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param, Scene};
 use crate::parse::{Item, ModelAst};
 
 /// Check a parsed model. Returns `None` when any error was found.
@@ -94,10 +94,10 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
                                 *span,
                                 format!(
                                     "the default {} of `{}` violates its bound {} {}",
-                                    d,
+                                    num(d),
                                     p.name,
                                     op_str(*op),
-                                    b
+                                    num(b)
                                 ),
                             );
                         }
@@ -407,7 +407,10 @@ fn constant(
     match g.as_const(id) {
         Some(x) if x.is_finite() => Some(x),
         Some(x) => {
-            diags.error(e.span(), format!("{ctx} is {x}, not a finite number"));
+            diags.error(
+                e.span(),
+                format!("{ctx} is {}, not a finite number", num(x)),
+            );
             None
         }
         None => {
@@ -512,8 +515,9 @@ fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             diags.error(
                 e.span(),
                 format!(
-                    "the {what} `{}` is {v} at the defaults; it must be positive",
-                    e.to_token_stream()
+                    "the {what} `{}` is {} at the defaults; it must be positive",
+                    e.to_token_stream(),
+                    num(v)
                 ),
             );
         }
@@ -536,7 +540,9 @@ fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) 
                 b.span,
                 format!(
                     "`{}` and `{}` have the same velocity {} at the defaults",
-                    a.label, b.label, vel[w[0]]
+                    a.label,
+                    b.label,
+                    num(vel[w[0]])
                 ),
             );
         }
@@ -548,7 +554,8 @@ fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) 
                 b.velocity.span(),
                 format!(
                     "the velocity of `{}` is {} at the defaults",
-                    b.label, vel[i]
+                    b.label,
+                    num(vel[i])
                 ),
             );
         }
@@ -750,6 +757,30 @@ fn perturbations(n: usize, trials: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// The defaults moved by the draws `t` in [-1, 1], each kept inside its
+/// parameter's bounds: a value outside them is pulled back towards the
+/// default (which satisfies them) by halving the step. The continuity check
+/// must only try valid parameter values: a Stribeck law `exp(-|v - V| / vs)`
+/// with `vs` pushed below zero is not a law of the model at all.
+fn perturbed(model: &Model, defaults: &[f64], t: &[f64]) -> Vec<f64> {
+    defaults
+        .iter()
+        .zip(t)
+        .zip(&model.params)
+        .map(|((&d, &u), p)| {
+            let mut step = d * 0.3 * u + 0.1 * u;
+            for _ in 0..60 {
+                let x = d + step;
+                if p.bounds.iter().all(|&(op, b)| satisfies(x, op, b)) {
+                    return x;
+                }
+                step *= 0.5;
+            }
+            d
+        })
+        .collect()
+}
+
 fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
     let mut g = inst.graph.clone();
     let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
@@ -769,26 +800,23 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
         let (la, lb) = (model.domains[above].label, model.domains[below].label);
         let at_defaults = g.eval(jump, &defaults, &[]);
         let scale = 1.0 + g.eval(fa, &defaults, &[]).abs();
-        if at_defaults.abs() > 1e-12 * scale {
+        // NaN (a law undefined at the boundary) is a jump too.
+        if at_defaults.is_nan() || at_defaults.abs() > 1e-12 * scale {
             diags.error(
                 b.span,
                 format!(
                     "kinetic friction jumps at `{}` (domain {lb} gives {}, domain {la} gives {}), but `{}` is not a stick boundary: \
                      make the laws meet there or declare `stick BOUND`",
                     b.label,
-                    g.eval(fb, &defaults, &[]),
-                    g.eval(fa, &defaults, &[]),
+                    num(g.eval(fb, &defaults, &[])),
+                    num(g.eval(fa, &defaults, &[])),
                     b.label
                 ),
             );
             continue;
         }
         for t in &trials {
-            let p: Vec<f64> = defaults
-                .iter()
-                .zip(t)
-                .map(|(d, u)| d * (1.0 + 0.3 * u) + 0.1 * u)
-                .collect();
+            let p = perturbed(model, &defaults, t);
             let jv = g.eval(jump, &p, &[]);
             let sc = 1.0 + g.eval(fa, &p, &[]).abs();
             if jv.abs() > 1e-9 * sc {
@@ -827,10 +855,11 @@ fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             diags.error(
                 e.span(),
                 format!(
-                    "the static bound `{}` = {s} is below the kinetic friction level {} {side} `{}` (domain {}): \
+                    "the static bound `{}` = {} is below the kinetic friction level {} {side} `{}` (domain {}): \
                      static friction must be at least kinetic",
                     e.to_token_stream(),
-                    level.abs(),
+                    num(s),
+                    num(level.abs()),
                     b.label,
                     model.domains[j].label
                 ),
@@ -902,42 +931,24 @@ fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics
     })
 }
 
-/// Parse `P_{3_31 0_11 3_13 4_33}` or `3_31 0_11 3_13 4_33` into mapping
-/// indices (as written, i.e. the last one is applied first), checking that
-/// each mapping ends on the boundary where the next one starts.
+/// Parse `P_{3_31 0_11 3_13 4_33}` (or `P{..}`, or the names alone) into
+/// mapping indices as written (the last one is applied first), by the
+/// grammar the runtime uses ([`crate::structure`]): each mapping ends on the
+/// boundary where the next one starts, and a stick mapping is followed by a
+/// mapping into a domain.
 pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> {
-    let t = text.trim();
-    let inner = t
-        .strip_prefix("P_{")
-        .and_then(|r| r.strip_suffix('}'))
-        .unwrap_or(t);
-    let mut out = Vec::new();
-    for tok in inner.split_whitespace() {
-        match model.mappings.iter().position(|m| m.name == tok) {
-            Some(i) => out.push(i),
-            None => {
-                let known: Vec<&str> = model.mappings.iter().map(|m| m.name.as_str()).collect();
-                return Err(format!(
-                    "`{tok}` is not a mapping of model `{}` (it has {})",
-                    model.name,
-                    known.join(", ")
-                ));
-            }
-        }
-    }
-    if out.is_empty() {
-        return Err("an empty mapping structure".into());
-    }
-    // Application order is right to left.
-    let applied: Vec<&Mapping> = out.iter().rev().map(|&i| &model.mappings[i]).collect();
-    for k in 0..applied.len() {
-        let (a, b) = (applied[k], applied[(k + 1) % applied.len()]);
-        if a.to != b.from {
-            return Err(format!(
-                "{} ends on {}, but {} starts on {}",
-                a.name, model.boundaries[a.to].label, b.name, model.boundaries[b.from].label
-            ));
-        }
-    }
-    Ok(out)
+    let views: Vec<crate::structure::MappingView> = model
+        .mappings
+        .iter()
+        .map(|m| crate::structure::MappingView {
+            name: &m.name,
+            from: m.from,
+            to: m.to,
+            domain_above_from: m.domain.map(|j| model.domains[j].lower == Some(m.from)),
+        })
+        .collect();
+    let labels: Vec<&str> = model.boundaries.iter().map(|b| b.label.as_str()).collect();
+    let applied =
+        crate::structure::parse(&model.name, &views, &labels, text).map_err(|e| e.to_string())?;
+    Ok(applied.iter().rev().map(|&(i, _)| i).collect())
 }

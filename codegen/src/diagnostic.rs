@@ -12,6 +12,22 @@ pub struct Diagnostic {
     pub span: Span,
     /// What is wrong, in the model's terms.
     pub message: String,
+    /// Line and column (from 1) when there is no token to carry a span:
+    /// errors found in the source text before it is tokenized.
+    pub at: Option<(usize, usize)>,
+}
+
+impl Diagnostic {
+    /// Line (from 1) and column (from 1).
+    pub fn line_col(&self) -> (usize, usize) {
+        match self.at {
+            Some(at) => at,
+            None => {
+                let s = self.span.start();
+                (s.line, s.column + 1)
+            }
+        }
+    }
 }
 
 /// All errors found so far.
@@ -31,6 +47,16 @@ impl Diagnostics {
         self.list.push(Diagnostic {
             span,
             message: message.into(),
+            at: None,
+        });
+    }
+
+    /// Record an error at `line:col` (both from 1) of the source text.
+    pub fn error_at(&mut self, line: usize, col: usize, message: impl Into<String>) {
+        self.list.push(Diagnostic {
+            span: Span::call_site(),
+            message: message.into(),
+            at: Some((line, col)),
         });
     }
 
@@ -81,9 +107,26 @@ impl Diagnostics {
         self.list
             .iter()
             .map(|d| {
-                let s = d.span.start();
-                format!("{}:{}:{}: {}", file, s.line, s.column + 1, d.message)
+                let (line, col) = d.line_col();
+                format!("{}:{}:{}: {}", file, line, col, d.message)
             })
             .collect()
+    }
+}
+
+/// A number for a message: shortest round-trip, but rounded to 12
+/// significant digits first, so that the noise of arithmetic does not show
+/// (`3.7700000000000005` prints as `3.77`); non-finite values print as
+/// `inf`, `-inf`, `NaN`. Every checker message formats numbers with this.
+pub fn num(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return format!("{x}");
+    }
+    let rounded: f64 = format!("{x:.11e}").parse().unwrap_or(x);
+    let a = rounded.abs();
+    if (1e-5..1e16).contains(&a) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
     }
 }

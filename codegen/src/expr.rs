@@ -72,6 +72,11 @@ pub struct Graph {
     nodes: Vec<Node>,
     index: HashMap<Node, Id>,
     derivatives: HashMap<(Id, u32), Id>,
+    /// The value of every node with the parameters at [`Graph::set_param_values`]
+    /// (NaN for a parameter without a value and for every variable), kept
+    /// as nodes are made: a non-finite number is located where it appears.
+    values: Vec<f64>,
+    param_values: Vec<f64>,
 }
 
 impl Graph {
@@ -100,9 +105,29 @@ impl Graph {
             return id;
         }
         let id = Id(self.nodes.len() as u32);
+        let value = eval_node(node, |c| self.values[c.0 as usize], &self.param_values, &[]);
+        self.values.push(value);
         self.nodes.push(node);
         self.index.insert(node, id);
         id
+    }
+
+    /// Give the parameters values (usually their defaults): from now on
+    /// [`Graph::value`] of every node is its value there.
+    pub fn set_param_values(&mut self, values: Vec<f64>) {
+        self.param_values = values;
+        let mut all = Vec::with_capacity(self.nodes.len());
+        for &node in &self.nodes {
+            let value = eval_node(node, |c| all[c.0 as usize], &self.param_values, &[]);
+            all.push(value);
+        }
+        self.values = all;
+    }
+
+    /// The node's value with the parameters at [`Graph::set_param_values`]
+    /// and every variable unknown (NaN).
+    pub fn value(&self, id: Id) -> f64 {
+        self.values[id.0 as usize]
     }
 
     /// The value of a constant node, if it is one.
@@ -230,7 +255,10 @@ impl Graph {
             1 => a,
             -1 => self.recip(a),
             _ => match self.node(a) {
-                Node::Powi(x, m) => self.powi(x, m * n),
+                Node::Powi(x, m) => match m.checked_mul(n) {
+                    Some(mn) => self.powi(x, mn),
+                    None => self.intern(Node::Powi(a, n)),
+                },
                 _ => self.intern(Node::Powi(a, n)),
             },
         }
@@ -331,7 +359,11 @@ impl Graph {
             }
             Node::Powi(a, n) => {
                 let da = self.diff(a, var)?;
-                let pm = self.powi(a, n - 1);
+                // n - 1 overflows only for n = i32::MIN: a^(n-1) = a^n / a.
+                let pm = match n.checked_sub(1) {
+                    Some(n1) => self.powi(a, n1),
+                    None => self.div(id, a),
+                };
                 let k = self.constant(n as f64);
                 let t = self.mul(k, pm);
                 self.mul(t, da)
@@ -480,46 +512,52 @@ impl Graph {
     /// `Ec`/`Es` use the textbook regime formulas (not the runtime's series),
     /// so that it is an independent computation away from critical damping.
     pub fn eval(&self, id: Id, params: &[f64], vars: &[f64]) -> f64 {
-        let mut values = vec![0.0; id.0 as usize + 1];
-        for i in 0..values.len() {
-            let v = |c: Id| values[c.0 as usize];
-            values[i] = match self.nodes[i] {
-                Node::Const(bits) => f64::from_bits(bits),
-                Node::Param(k) => params.get(k as usize).copied().unwrap_or(f64::NAN),
-                Node::Var(k) => vars.get(k as usize).copied().unwrap_or(f64::NAN),
-                Node::Add(a, b) => v(a) + v(b),
-                Node::Mul(a, b) => v(a) * v(b),
-                Node::Neg(a) => -v(a),
-                Node::Recip(a) => 1.0 / v(a),
-                Node::Powi(a, n) => v(a).powi(n),
-                Node::Sqrt(a) => v(a).sqrt(),
-                Node::Exp(a) => v(a).exp(),
-                Node::Ln(a) => v(a).ln(),
-                Node::Sin(a) => v(a).sin(),
-                Node::Cos(a) => v(a).cos(),
-                Node::Abs(a) => v(a).abs(),
-                Node::Sign(a) => v(a).signum(),
-                Node::Hom(kind, d, c, tau) => {
-                    let (d, tau) = (v(d), v(tau));
-                    let w2 = d * d - v(c);
-                    let e = (-d * tau).exp();
-                    let (c, s) = if w2 > 0.0 {
-                        let w = w2.sqrt();
-                        ((w * tau).cosh(), (w * tau).sinh() / w)
-                    } else if w2 < 0.0 {
-                        let w = (-w2).sqrt();
-                        ((w * tau).cos(), (w * tau).sin() / w)
-                    } else {
-                        (1.0, tau)
-                    };
-                    match kind {
-                        Hom::Ec => e * c,
-                        Hom::Es => e * s,
-                    }
-                }
-            };
+        let mut values: Vec<f64> = Vec::with_capacity(id.0 as usize + 1);
+        for i in 0..=id.0 as usize {
+            let value = eval_node(self.nodes[i], |c| values[c.0 as usize], params, vars);
+            values.push(value);
         }
         values[id.0 as usize]
+    }
+}
+
+/// One node's value from its children's (`v`), with the given parameter
+/// and variable values (NaN where none is given).
+fn eval_node(node: Node, v: impl Fn(Id) -> f64, params: &[f64], vars: &[f64]) -> f64 {
+    match node {
+        Node::Const(bits) => f64::from_bits(bits),
+        Node::Param(k) => params.get(k as usize).copied().unwrap_or(f64::NAN),
+        Node::Var(k) => vars.get(k as usize).copied().unwrap_or(f64::NAN),
+        Node::Add(a, b) => v(a) + v(b),
+        Node::Mul(a, b) => v(a) * v(b),
+        Node::Neg(a) => -v(a),
+        Node::Recip(a) => 1.0 / v(a),
+        Node::Powi(a, n) => v(a).powi(n),
+        Node::Sqrt(a) => v(a).sqrt(),
+        Node::Exp(a) => v(a).exp(),
+        Node::Ln(a) => v(a).ln(),
+        Node::Sin(a) => v(a).sin(),
+        Node::Cos(a) => v(a).cos(),
+        Node::Abs(a) => v(a).abs(),
+        Node::Sign(a) => v(a).signum(),
+        Node::Hom(kind, d, c, tau) => {
+            let (d, tau) = (v(d), v(tau));
+            let w2 = d * d - v(c);
+            let e = (-d * tau).exp();
+            let (c, s) = if w2 > 0.0 {
+                let w = w2.sqrt();
+                ((w * tau).cosh(), (w * tau).sinh() / w)
+            } else if w2 < 0.0 {
+                let w = (-w2).sqrt();
+                ((w * tau).cos(), (w * tau).sin() / w)
+            } else {
+                (1.0, tau)
+            };
+            match kind {
+                Hom::Ec => e * c,
+                Hom::Es => e * s,
+            }
+        }
     }
 }
 

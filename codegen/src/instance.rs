@@ -59,6 +59,9 @@ pub struct Instance {
 /// division by zero, ...) go to `diags`.
 pub fn lower_instance(model: &Model, free: &[usize], diags: &mut Diagnostics) -> Instance {
     let mut graph = Graph::new();
+    // Every node knows its value at the defaults, so that lowering reports a
+    // non-finite number at the subexpression that makes it.
+    graph.set_param_values(free.iter().map(|&i| model.params[i].default).collect());
     let mut names = HashMap::new();
     for (i, p) in model.params.iter().enumerate() {
         let id = match free.iter().position(|&f| f == i) {

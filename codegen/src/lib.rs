@@ -14,41 +14,84 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+#[cfg(feature = "generator")]
 pub mod check;
+#[cfg(feature = "generator")]
 pub mod diagnostic;
+#[cfg(feature = "generator")]
 pub mod emit;
+#[cfg(feature = "generator")]
 pub mod equations;
+#[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod expr;
+#[cfg(feature = "generator")]
 pub mod instance;
+#[cfg(feature = "generator")]
 pub mod lower;
+#[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod model;
+#[cfg(feature = "generator")]
 pub mod names;
+#[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod parse;
+#[cfg(feature = "generator")]
 pub mod pieces;
+#[cfg(feature = "generator")]
 pub mod report;
+#[cfg(feature = "generator")]
+pub mod source;
+pub mod structure;
 
+#[cfg(feature = "generator")]
 use std::path::Path;
+#[cfg(feature = "generator")]
 use std::str::FromStr;
 
+#[cfg(feature = "generator")]
 use proc_macro2::TokenStream;
 
+#[cfg(feature = "generator")]
 pub use diagnostic::{Diagnostic, Diagnostics};
+#[cfg(feature = "generator")]
 pub use emit::Options;
+#[cfg(feature = "generator")]
 pub use report::{check_file, check_source, Located, Position, Report, Severity};
 
 /// Lints allowed on a generated module: parameter names keep the model's
 /// spelling (`V1`, `Q0`), folded constants keep every digit, and field or
 /// match shapes follow the model rather than style.
+#[cfg(feature = "generator")]
 pub const MODULE_LINTS: &str = "non_snake_case, clippy::excessive_precision, clippy::approx_constant, clippy::redundant_field_names, clippy::single_match, clippy::let_and_return";
+#[cfg(feature = "generator")]
 pub use model::Model;
 
 /// Parse and check a model from tokens.
+#[cfg(feature = "generator")]
 pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
+    model_named(tokens, None)
+}
+
+/// [`model_from_tokens`]; with `file`, the model must be named like it
+/// (`models/NAME.ssm` holds `model NAME`), else an error at the name.
+#[cfg(feature = "generator")]
+fn model_named(tokens: TokenStream, file: Option<&str>) -> Result<Model, Diagnostics> {
     let mut diags = Diagnostics::new();
     let ast = parse::parse_model(tokens, &mut diags);
+    if let (Some(ast), Some(stem)) = (&ast, file) {
+        let name = names::bare(&ast.name.to_string()).to_string();
+        if name != stem {
+            diags.error(
+                ast.name.span(),
+                format!(
+                    "the model is named `{name}`, but its file is `{stem}.ssm`: \
+                     name the file `{name}.ssm` (or the model `{stem}`)"
+                ),
+            );
+        }
+    }
     if !diags.is_empty() {
         return Err(diags);
     }
@@ -61,8 +104,18 @@ pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
 }
 
 /// Generate the Rust module body for the model in `tokens`.
+#[cfg(feature = "generator")]
 pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile, Diagnostics> {
-    let model = model_from_tokens(tokens)?;
+    generate_named(tokens, options, None)
+}
+
+#[cfg(feature = "generator")]
+pub(crate) fn generate_named(
+    tokens: TokenStream,
+    options: &Options,
+    file: Option<&str>,
+) -> Result<GeneratedFile, Diagnostics> {
+    let model = model_named(tokens, file)?;
     let mut diags = Diagnostics::new();
     match emit::emit(&model, options, &mut diags) {
         Some(code) if diags.is_empty() => Ok(GeneratedFile {
@@ -79,17 +132,24 @@ pub fn generate(tokens: TokenStream, options: &Options) -> Result<GeneratedFile,
 /// Tokenize model source text. Outside a proc-macro (build scripts, tests)
 /// spans carry line and column; inside one, call
 /// `proc_macro2::fallback::force()` first to get them.
+#[cfg(feature = "generator")]
+///
+/// Delimiters that do not balance are located by [`source::unbalanced`]
+/// (the tokenizer's own error does not say where).
 pub fn tokenize(source: &str) -> Result<TokenStream, Diagnostics> {
     TokenStream::from_str(source).map_err(|e| {
         let mut d = Diagnostics::new();
-        let message = names::tokenize_hint(source, e.span())
-            .unwrap_or_else(|| format!("cannot tokenize the model: {e}"));
-        d.error(e.span(), message);
+        if !source::unbalanced(source, &mut d) {
+            let message = names::tokenize_hint(source, e.span())
+                .unwrap_or_else(|| format!("cannot tokenize the model: {e}"));
+            d.error(e.span(), message);
+        }
         d
     })
 }
 
 /// A generated model read from a file.
+#[cfg(feature = "generator")]
 #[derive(Clone, Debug)]
 pub struct GeneratedFile {
     /// The model's name (`model NAME { .. }`), without `r#`.
@@ -105,6 +165,7 @@ pub struct GeneratedFile {
 }
 
 /// Where a generated model or scene lives in the generated module.
+#[cfg(feature = "generator")]
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct InstanceName {
     /// `paper` or `paper::sweep_w`.
@@ -118,6 +179,7 @@ pub struct InstanceName {
     pub smooth: bool,
 }
 
+#[cfg(feature = "generator")]
 fn instance_names(model: &Model) -> Vec<InstanceName> {
     // Display names are bare (`fn`); paths are Rust (`r#fn`).
     let rust = |n: &str| names::ident_text(n).unwrap_or_else(|| n.to_string());
@@ -141,11 +203,13 @@ fn instance_names(model: &Model) -> Vec<InstanceName> {
 /// Read, check and generate a model file. On failure the error is the
 /// rendered report: `file:line:col`, the source line and a caret per error
 /// ([`check_file`], rendered).
+#[cfg(feature = "generator")]
 pub fn generate_file(path: &Path, origin: &str) -> Result<GeneratedFile, String> {
     check_file(path, origin).map_err(|r| r.render())
 }
 
 /// Like [`generate_file`], from source text; `origin` names the file in messages.
+#[cfg(feature = "generator")]
 pub fn generate_source(source: &str, origin: &str) -> Result<GeneratedFile, String> {
     check_source(source, origin).map_err(|r| r.render())
 }

@@ -25,7 +25,124 @@ pub struct Scope<'a> {
 
 /// Lower `expr` into `graph`. Errors go to `diags`; the result is then a
 /// placeholder zero so that checking can go on.
+///
+/// Every literal and every operation is checked where it is made: a value
+/// that is not finite (with the parameters at the graph's
+/// [`Graph::set_param_values`], usually the defaults) while its operands are
+/// finite is reported at that subexpression, with the values of the names in
+/// it. A subnormal number is fine as long as what is made of it is finite.
 pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnostics) -> Id {
+    if let Some(attr) = expr_attrs(expr).first() {
+        diags.error(
+            attr.pound_token.span,
+            format!(
+                "attributes are not allowed inside an expression (in {}); only doc comments, and only on items",
+                scope.context
+            ),
+        );
+        return graph.constant(0.0);
+    }
+    let mut operands = Vec::new();
+    let id = lower_node(graph, expr, scope, diags, &mut operands);
+    let value = graph.value(id);
+    let unknown = matches!(
+        graph.node(id),
+        crate::expr::Node::Var(_) | crate::expr::Node::Param(_)
+    );
+    if !unknown && !value.is_finite() && operands.iter().all(|&o| graph.value(o).is_finite()) {
+        diags.error(expr.span(), not_finite(graph, expr, value, scope));
+    }
+    id
+}
+
+/// The message for a subexpression that is not a finite number.
+fn not_finite(graph: &Graph, expr: &Expr, value: f64, scope: &Scope) -> String {
+    let text = short(&expr.to_token_stream().to_string());
+    if let Expr::Lit(_) = expr {
+        return format!(
+            "the number `{text}` in {} is out of range: it would be {value} as an f64",
+            scope.context
+        );
+    }
+    let mut names: Vec<String> = Vec::new();
+    for tt in expr.to_token_stream() {
+        collect_names(tt, &mut names);
+    }
+    let with: Vec<String> = names
+        .iter()
+        .filter_map(|n| {
+            let id = scope.names.get(n)?;
+            let x = graph.value(*id);
+            (!x.is_nan() || graph.as_const(*id).is_some())
+                .then(|| format!("{n} = {}", crate::diagnostic::num(x)))
+        })
+        .collect();
+    let at = if scope.names.is_empty() {
+        String::new()
+    } else if with.is_empty() {
+        " at the defaults".to_string()
+    } else {
+        format!(" at the defaults, with {}", with.join(", "))
+    };
+    format!(
+        "{}: `{text}` evaluates to {value}{at}",
+        capitalize_context(scope.context)
+    )
+}
+
+fn capitalize_context(c: &str) -> String {
+    if c.is_empty() {
+        return "this expression".to_string();
+    }
+    c.to_string()
+}
+
+fn short(text: &str) -> String {
+    if text.chars().count() <= 60 {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(57).collect();
+    format!("{head}...")
+}
+
+fn collect_names(tt: proc_macro2::TokenTree, out: &mut Vec<String>) {
+    match tt {
+        proc_macro2::TokenTree::Ident(i) => {
+            let n = i.to_string();
+            if !out.contains(&n) {
+                out.push(n);
+            }
+        }
+        proc_macro2::TokenTree::Group(g) => {
+            for t in g.stream() {
+                collect_names(t, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+fn expr_attrs(expr: &Expr) -> &[syn::Attribute] {
+    match expr {
+        Expr::Lit(e) => &e.attrs,
+        Expr::Path(e) => &e.attrs,
+        Expr::Paren(e) => &e.attrs,
+        Expr::Group(e) => &e.attrs,
+        Expr::Unary(e) => &e.attrs,
+        Expr::Binary(e) => &e.attrs,
+        Expr::Call(e) => &e.attrs,
+        _ => &[],
+    }
+}
+
+/// The node for `expr`; the nodes of its operands go to `operands`.
+fn lower_node(
+    graph: &mut Graph,
+    expr: &Expr,
+    scope: &Scope,
+    diags: &mut Diagnostics,
+    operands: &mut Vec<Id>,
+) -> Id {
     match expr {
         Expr::Lit(lit) => match &lit.lit {
             Lit::Float(f) => match f.base10_parse::<f64>() {
@@ -79,11 +196,11 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                 }
             }
         }
-        Expr::Paren(p) => lower(graph, &p.expr, scope, diags),
-        Expr::Group(g) => lower(graph, &g.expr, scope, diags),
+        Expr::Paren(p) => operand(graph, &p.expr, scope, diags, operands),
+        Expr::Group(g) => operand(graph, &g.expr, scope, diags, operands),
         Expr::Unary(u) => match u.op {
             UnOp::Neg(_) => {
-                let a = lower(graph, &u.expr, scope, diags);
+                let a = operand(graph, &u.expr, scope, diags, operands);
                 graph.neg(a)
             }
             _ => {
@@ -92,8 +209,8 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
             }
         },
         Expr::Binary(b) => {
-            let l = lower(graph, &b.left, scope, diags);
-            let r = lower(graph, &b.right, scope, diags);
+            let l = operand(graph, &b.left, scope, diags, operands);
+            let r = operand(graph, &b.right, scope, diags, operands);
             match b.op {
                 BinOp::Add(_) => graph.add(l, r),
                 BinOp::Sub(_) => graph.sub(l, r),
@@ -149,14 +266,16 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                     diags.error(call.span(), format!("`{name}` takes one argument"));
                     return graph.constant(0.0);
                 }
-                let a = lower(graph, args[0], scope, diags);
+                let a = operand(graph, args[0], scope, diags, operands);
                 return f(graph, a);
             }
             if name == "powi" {
-                let n = match args.get(1) {
+                // The exponent as written, in i64 (or `None` when it is not
+                // an integer literal); beyond i32 it is reported as such.
+                let wide = match args.get(1) {
                     Some(Expr::Lit(syn::ExprLit {
                         lit: Lit::Int(i), ..
-                    })) => i.base10_parse::<i32>().ok(),
+                    })) => Some(i.base10_parse::<i64>().map_err(|_| i.span())),
                     Some(Expr::Unary(syn::ExprUnary {
                         op: UnOp::Neg(_),
                         expr,
@@ -164,14 +283,37 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
                     })) => match &**expr {
                         Expr::Lit(syn::ExprLit {
                             lit: Lit::Int(i), ..
-                        }) => i.base10_parse::<i32>().ok().map(|n| -n),
+                        }) => Some(i.base10_parse::<i64>().map(|n| -n).map_err(|_| i.span())),
                         _ => None,
                     },
                     _ => None,
                 };
+                let n = match wide {
+                    Some(Ok(n)) => match i32::try_from(n) {
+                        Ok(n) => Some(n),
+                        Err(_) => {
+                            diags.error(
+                                args[1].span(),
+                                format!(
+                                    "the exponent {n} of `powi` is out of range: it must fit in an i32 (|n| <= {})",
+                                    i32::MAX
+                                ),
+                            );
+                            return graph.constant(0.0);
+                        }
+                    },
+                    Some(Err(span)) => {
+                        diags.error(
+                            span,
+                            "the exponent of `powi` is out of range: it must fit in an i32",
+                        );
+                        return graph.constant(0.0);
+                    }
+                    None => None,
+                };
                 match (args.len(), n) {
                     (2, Some(n)) => {
-                        let a = lower(graph, args[0], scope, diags);
+                        let a = operand(graph, args[0], scope, diags, operands);
                         if n < 0 && graph.as_const(a) == Some(0.0) {
                             diags.error(
                                 args[0].span(),
@@ -207,6 +349,18 @@ pub fn lower(graph: &mut Graph, expr: &Expr, scope: &Scope, diags: &mut Diagnost
             graph.constant(0.0)
         }
     }
+}
+
+fn operand(
+    graph: &mut Graph,
+    expr: &Expr,
+    scope: &Scope,
+    diags: &mut Diagnostics,
+    operands: &mut Vec<Id>,
+) -> Id {
+    let id = lower(graph, expr, scope, diags);
+    operands.push(id);
+    id
 }
 
 fn fail(graph: &mut Graph, diags: &mut Diagnostics, e: syn::Error) -> Id {

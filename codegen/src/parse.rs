@@ -5,7 +5,7 @@
 //! the parse: the parser skips to the end of that item and goes on, so all
 //! the file's errors are reported at once.
 
-use proc_macro2::{Span, TokenStream, TokenTree};
+use proc_macro2::{Delimiter, Group, Spacing, Span, TokenStream, TokenTree};
 use syn::parse::ParseStream;
 use syn::{braced, Attribute, Expr, Ident, LitInt, LitStr, Token};
 
@@ -249,7 +249,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
         input.parse::<kw::param>()?;
         let name: Ident = input.parse()?;
         input.parse::<Token![=]>()?;
-        let default: Expr = input.parse()?;
+        let default = expr(input)?;
         let mut bounds = Vec::new();
         while input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
@@ -271,7 +271,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
                     input.error("expected a bound: `> value`, `>= value`, `< value` or `<= value`")
                 );
             };
-            let value: Expr = input.parse()?;
+            let value = expr(input)?;
             bounds.push((op, value, span));
         }
         input.parse::<Token![;]>()?;
@@ -285,7 +285,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
         input.parse::<Token![let]>()?;
         let name: Ident = input.parse()?;
         input.parse::<Token![=]>()?;
-        let value: Expr = input.parse()?;
+        let value = expr(input)?;
         input.parse::<Token![;]>()?;
         Ok(Some(Item::Let(LetAst { docs, name, value })))
     } else if la.peek(kw::oscillator) || la.peek(kw::law) {
@@ -302,7 +302,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
             while !body.is_empty() {
                 let key: Ident = body.parse()?;
                 body.parse::<Token![:]>()?;
-                let value: Expr = body.parse()?;
+                let value = expr(body)?;
                 fields.push((key, value));
                 if body.is_empty() {
                     break;
@@ -330,7 +330,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
         input.parse::<Token![:]>()?;
         input.parse::<kw::v>()?;
         input.parse::<Token![=]>()?;
-        let velocity: Expr = input.parse()?;
+        let velocity = expr(input)?;
         let mut stick = None;
         if input.peek(Token![,]) {
             input.parse::<Token![,]>()?;
@@ -340,7 +340,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
                     "expected `stick BOUND` (the static friction bound per unit mass)",
                 )
             })?;
-            stick = Some(input.parse::<Expr>()?);
+            stick = Some(expr(input)?);
         }
         input.parse::<Token![;]>()?;
         Ok(Some(Item::Boundary(BoundaryAst {
@@ -355,7 +355,7 @@ fn parse_item(input: ParseStream, diags: &mut Diagnostics) -> syn::Result<Option
         input.parse::<Token![:]>()?;
         let band = parse_band(input)?;
         input.parse::<Token![=>]>()?;
-        let law: Expr = input.parse()?;
+        let law = expr(input)?;
         input.parse::<Token![;]>()?;
         Ok(Some(Item::Domain(DomainAst {
             docs,
@@ -473,4 +473,186 @@ fn parse_band(input: ParseStream) -> syn::Result<BandAst> {
     } else {
         Err(input.error(expected))
     }
+}
+
+/// How deep an expression may nest: parentheses, calls and unary operators
+/// together. `syn` parses nesting by recursion, so a limit (with a located
+/// error) is what keeps a model with thousands of nested parentheses from
+/// overflowing the stack of the build script or the compiler.
+pub const MAX_NESTING: usize = 64;
+
+/// Terms a sum may have at one level before it is grouped: a flat sum
+/// `a + b + c + ...` is a left-deep tree, as deep as it is long, and every
+/// pass over it (parser, checker, emitter, rustc) would recurse that deep.
+pub const MAX_FLAT_TERMS: usize = 64;
+
+/// One expression: the tokens up to the next `,` or `;` at this level (or
+/// the end), checked for depth, long sums grouped, then parsed by `syn`.
+fn expr(input: ParseStream) -> syn::Result<Expr> {
+    if input.is_empty() || input.peek(Token![,]) || input.peek(Token![;]) {
+        return Err(input.error("expected an expression"));
+    }
+    let tokens = input.step(|cursor| {
+        let mut rest = *cursor;
+        let mut out = Vec::new();
+        while let Some((tt, next)) = rest.token_tree() {
+            // The expression ends before a `,` or `;`, and before an operand
+            // that directly follows one (`3.0 3.0`, `3.0 param ..`: the item's
+            // `;` is then reported missing there); a name followed by
+            // parentheses is a call.
+            let ends = match (&tt, out.last()) {
+                (TokenTree::Punct(p), _) => p.as_char() == ',' || p.as_char() == ';',
+                (TokenTree::Group(g), Some(TokenTree::Ident(_))) => {
+                    g.delimiter() != Delimiter::Parenthesis
+                }
+                // `#[..]` (an attribute, rejected with its own message) is no operand.
+                (_, Some(TokenTree::Group(g))) if g.delimiter() == Delimiter::Bracket => false,
+                (_, Some(prev)) => is_operand(prev),
+                (_, None) => false,
+            };
+            if ends {
+                break;
+            }
+            out.push(tt);
+            rest = next;
+        }
+        Ok((out, rest))
+    })?;
+    check_nesting(&tokens)?;
+    let grouped = group_long_sums(tokens);
+    syn::parse2(grouped.into_iter().collect())
+}
+
+/// Whether `tt` ends an operand (so that a `+` or `-` after it is binary).
+fn is_operand(tt: &TokenTree) -> bool {
+    !matches!(tt, TokenTree::Punct(_))
+}
+
+/// Reject nesting deeper than [`MAX_NESTING`], at the token where it gets
+/// too deep. Iterative: the depth of the input is what is being checked.
+fn check_nesting(tokens: &[TokenTree]) -> syn::Result<()> {
+    // (tokens of one level, next index, depth of that level)
+    let mut stack: Vec<(Vec<TokenTree>, usize, usize)> = vec![(tokens.to_vec(), 0, 0)];
+    while let Some((level, mut i, depth)) = stack.pop() {
+        let mut unary = 0;
+        while i < level.len() {
+            let tt = &level[i];
+            i += 1;
+            match tt {
+                TokenTree::Punct(p)
+                    if matches!(p.as_char(), '-' | '!')
+                        && (i < 2 || !is_operand(&level[i - 2])) =>
+                {
+                    unary += 1;
+                    if depth + unary > MAX_NESTING {
+                        return Err(syn::Error::new(
+                            p.span(),
+                            format!(
+                                "expression nested deeper than {MAX_NESTING} levels (unary operators and parentheses); \
+                                 split it with `let`"
+                            ),
+                        ));
+                    }
+                }
+                TokenTree::Group(g) => {
+                    let inner = depth + unary + 1;
+                    if inner > MAX_NESTING {
+                        return Err(syn::Error::new(
+                            g.span_open(),
+                            format!(
+                                "expression nested deeper than {MAX_NESTING} levels (parentheses, calls and unary operators); \
+                                 split it with `let`"
+                            ),
+                        ));
+                    }
+                    let child: Vec<TokenTree> = g.stream().into_iter().collect();
+                    stack.push((level, i, depth));
+                    stack.push((child, 0, inner));
+                    break;
+                }
+                _ => unary = 0,
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Group a sum of more than [`MAX_FLAT_TERMS`] terms into parenthesized
+/// chunks (and chunks of chunks), inside every group too: `t1 + ... + t64 -
+/// t65 + t66 ...` becomes `(t1 + ... + t64) - (t65 - t66 ...)`, the signs
+/// inside a chunk that follows a `-` flipped. The value is the same sum,
+/// added in a different order (rounding may differ in the last bits).
+/// Recursion follows the nesting, which [`check_nesting`] has bounded.
+fn group_long_sums(tokens: Vec<TokenTree>) -> Vec<TokenTree> {
+    let tokens: Vec<TokenTree> = tokens
+        .into_iter()
+        .map(|tt| match tt {
+            TokenTree::Group(g) => {
+                let inner: TokenStream = group_long_sums(g.stream().into_iter().collect())
+                    .into_iter()
+                    .collect();
+                let mut ng = Group::new(g.delimiter(), inner);
+                ng.set_span(g.span());
+                TokenTree::Group(ng)
+            }
+            other => other,
+        })
+        .collect();
+    // Terms, each with the binary operator before it (`None` for the first).
+    let mut terms: Vec<(Option<proc_macro2::Punct>, Vec<TokenTree>)> = vec![(None, Vec::new())];
+    for (i, tt) in tokens.iter().enumerate() {
+        if let TokenTree::Punct(p) = tt {
+            if matches!(p.as_char(), '+' | '-')
+                && p.spacing() == Spacing::Alone
+                && i > 0
+                && is_operand(&tokens[i - 1])
+            {
+                terms.push((Some(p.clone()), Vec::new()));
+                continue;
+            }
+        }
+        if let Some(last) = terms.last_mut() {
+            last.1.push(tt.clone());
+        }
+    }
+    if terms.len() <= MAX_FLAT_TERMS {
+        return tokens;
+    }
+    while terms.len() > MAX_FLAT_TERMS {
+        let mut next = Vec::new();
+        for chunk in terms.chunks(MAX_FLAT_TERMS) {
+            let lead = chunk[0].0.clone();
+            let flip = lead.as_ref().is_some_and(|p| p.as_char() == '-');
+            let mut inner: Vec<TokenTree> = Vec::new();
+            for (k, (op, term)) in chunk.iter().enumerate() {
+                if k > 0 {
+                    if let Some(op) = op {
+                        let c = match (op.as_char(), flip) {
+                            ('+', true) => '-',
+                            ('-', true) => '+',
+                            (c, _) => c,
+                        };
+                        let mut p = proc_macro2::Punct::new(c, Spacing::Alone);
+                        p.set_span(op.span());
+                        inner.push(TokenTree::Punct(p));
+                    }
+                }
+                inner.extend(term.iter().cloned());
+            }
+            let first = inner.first().map_or_else(Span::call_site, TokenTree::span);
+            let last = inner.last().map_or(first, TokenTree::span);
+            let mut g = Group::new(Delimiter::Parenthesis, inner.into_iter().collect());
+            g.set_span(first.join(last).unwrap_or(first));
+            next.push((lead, vec![TokenTree::Group(g)]));
+        }
+        terms = next;
+    }
+    let mut out = Vec::new();
+    for (op, term) in terms {
+        if let Some(op) = op {
+            out.push(TokenTree::Punct(op));
+        }
+        out.extend(term);
+    }
+    out
 }

@@ -21,7 +21,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 
 use crate::diagnostic::Diagnostics;
-use crate::{generate, tokenize, GeneratedFile, Options};
+use crate::{generate_named, tokenize, GeneratedFile, Options};
 
 /// How bad a diagnostic is. Every diagnostic of the model language is an
 /// error today (the build stops); the field is there for editors.
@@ -92,7 +92,12 @@ impl Report {
         let errors = diags
             .iter()
             .map(|d| {
-                let (start, end) = (d.span.start(), d.span.end());
+                let (mut start, mut end) = (d.span.start(), d.span.end());
+                if let Some((line, col)) = d.at {
+                    // Found in the text before tokens: one character there.
+                    start = proc_macro2::LineColumn { line, column: col - 1 };
+                    end = proc_macro2::LineColumn { line, column: col };
+                }
                 // Line 0: a span with no place in the file (none is made
                 // today); reported without a location rather than a wrong one.
                 let position = (start.line > 0).then_some(Position {
@@ -196,28 +201,31 @@ fn render_one(message: &str, file: &str, at: Position, text: Option<&str>) -> St
 pub fn check_file(path: &Path, origin: &str) -> Result<GeneratedFile, Report> {
     let bytes = std::fs::read(path)
         .map_err(|e| Report::whole_file(origin, format!("cannot read {}: {e}", path.display())))?;
-    let source = String::from_utf8(bytes).map_err(|e| {
-        Report::whole_file(
-            origin,
-            format!(
-                "cannot read {}: not UTF-8 text (invalid byte at offset {})",
-                path.display(),
-                e.utf8_error().valid_up_to()
-            ),
-        )
-    })?;
-    check_source(&source, origin)
+    // A byte that is not UTF-8 is located at its line and column.
+    let source = crate::source::decode(&bytes)
+        .map_err(|(diags, text)| Report::from_diagnostics(&diags, origin, &text))?;
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+    check_text(&source, origin, stem.as_deref())
 }
 
-/// Like [`check_file`], from source text; `origin` names the file in messages.
+/// Like [`check_file`], from source text; `origin` names the file in messages
+/// (no file-name check: the text has no file).
 pub fn check_source(source: &str, origin: &str) -> Result<GeneratedFile, Report> {
+    check_text(source, origin, None)
+}
+
+/// Check and generate `source`; with `file`, the model must be named after it.
+fn check_text(source: &str, origin: &str, file: Option<&str>) -> Result<GeneratedFile, Report> {
+    // Editors do not show a byte order mark: columns are counted without it.
+    let source = crate::source::strip_bom(source);
     let run = || {
         let tokens = tokenize(source)?;
-        generate(
+        generate_named(
             tokens,
             &Options {
                 origin: origin.to_string(),
             },
+            file,
         )
     };
     match catch_unwind(AssertUnwindSafe(run)) {
