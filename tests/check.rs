@@ -166,7 +166,13 @@ fn an_unreadable_file_is_an_error_naming_it() {
     std::fs::write(&binary, b"model m { param \xe9 = 1.0; }").expect("write");
     let o = check(&[binary.to_str().expect("UTF-8 path")]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(text(&o.stderr).contains("not UTF-8"), "{}", text(&o.stderr));
+    // The bad byte is located: line 1, column 17 (the 17th character).
+    let err = text(&o.stderr);
+    assert!(
+        err.starts_with("error: the file is not valid UTF-8 at byte 0xE9"),
+        "{err}"
+    );
+    assert!(err.contains("latin1.ssm:1:17\n"), "{err}");
 
     // A directory is not a model file either.
     let o = check(&["models"]);

@@ -136,18 +136,42 @@ pub fn type_name(name: &str, prefix: &str) -> String {
 /// `r#` kept only where the bare name is a keyword the parser would refuse.
 /// Spans are kept, so messages still point at the name as written.
 pub fn canonical_tokens(tokens: TokenStream) -> TokenStream {
-    tokens
-        .into_iter()
-        .map(|tt| match tt {
-            TokenTree::Group(g) => {
-                let mut ng = Group::new(g.delimiter(), canonical_tokens(g.stream()));
-                ng.set_span(g.span());
-                TokenTree::Group(ng)
+    // An explicit stack, not recursion: a model may nest groups thousands
+    // deep (the depth limit is checked later, on the canonical tokens).
+    struct Frame {
+        rest: proc_macro2::token_stream::IntoIter,
+        out: Vec<TokenTree>,
+        group: Option<Group>,
+    }
+    let mut stack = vec![Frame {
+        rest: tokens.into_iter(),
+        out: Vec::new(),
+        group: None,
+    }];
+    loop {
+        let top = stack.last_mut().expect("the outermost frame is never popped");
+        match top.rest.next() {
+            Some(TokenTree::Group(g)) => stack.push(Frame {
+                rest: g.stream().into_iter(),
+                out: Vec::new(),
+                group: Some(g),
+            }),
+            Some(TokenTree::Ident(i)) => top.out.push(TokenTree::Ident(canonical_ident(i))),
+            Some(other) => top.out.push(other),
+            None => {
+                let done = stack.pop().expect("a frame is on the stack");
+                let stream: TokenStream = done.out.into_iter().collect();
+                match (done.group, stack.last_mut()) {
+                    (Some(g), Some(parent)) => {
+                        let mut ng = Group::new(g.delimiter(), stream);
+                        ng.set_span(g.span());
+                        parent.out.push(TokenTree::Group(ng));
+                    }
+                    _ => return stream,
+                }
             }
-            TokenTree::Ident(i) => TokenTree::Ident(canonical_ident(i)),
-            other => other,
-        })
-        .collect()
+        }
+    }
 }
 
 fn canonical_ident(i: Ident) -> Ident {

@@ -78,7 +78,7 @@ fn parse_report(report: &str) -> Vec<(String, String)> {
         if let Some(message) = line.strip_prefix("error: ") {
             let location = lines
                 .get(i + 1)
-                .and_then(|l| l.strip_prefix("  --> "))
+                .and_then(|l| l.trim_start().strip_prefix("--> "))
                 .unwrap_or_else(|| panic!("no location after `{line}` in:\n{report}"));
             out.push((message.to_string(), location.to_string()));
         }
