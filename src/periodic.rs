@@ -154,6 +154,16 @@ impl<M: Model> PeriodicSolver<M> {
         }
     }
 
+    /// The residual below which a point solves the equations to the rounding
+    /// of the closed form, relative to the motion's scales: residuals are
+    /// displacements (scale `l`) or velocities (scale `l W`), and `1e-11`
+    /// of them is what the flows' rounding leaves after a cycle.
+    fn residual_floor(p: &M::Params, points: &[SwitchingPoint]) -> f64 {
+        let l = Self::length_scale(p, points);
+        let w = M::oscillator(p).frequency.abs();
+        1e-11 * l * w.max(1.0)
+    }
+
     /// Size of the Newton step in the workspace, each unknown in its natural
     /// unit: phases in radians, displacements over the length scale `l`;
     /// a component within 8 ulps of its unknown counts as the tolerance
@@ -364,6 +374,17 @@ impl<M: Model> PeriodicSolver<M> {
             }
             let size = self.step_size(points, Self::length_scale(p, points), opts.tolerance);
             last_step = size;
+            if size > 1e-2 && r <= Self::residual_floor(p, points) {
+                // The point solves the equations to the rounding of the
+                // closed form, yet Newton proposes to move it by a sizeable
+                // fraction of the motion: `I − DP` is (nearly) singular, the
+                // point is one of a family of motions (eigenvalue 1 of `DP`),
+                // and the step would only slide along the family.
+                return Termination::Converged {
+                    iterations: it,
+                    residual: r,
+                };
+            }
             for ((t, pt), d) in self.trial.iter_mut().zip(points.iter()).zip(&self.delta) {
                 *t = SwitchingPoint {
                     x: pt.x + d[0],
@@ -420,6 +441,17 @@ impl<M: Model> PeriodicSolver<M> {
                     // Stagnation at round-off: the step is within a factor
                     // 1e3 of the tolerance and no fraction of it decreases
                     // the residual.
+                    return Termination::Converged {
+                        iterations: it + 1,
+                        residual: r,
+                    };
+                }
+                None if r <= Self::residual_floor(p, points) => {
+                    // No decrease, but the residual is already at the
+                    // rounding of the closed form: the step is large only
+                    // along a direction where `I − DP` is singular (a
+                    // family of motions, eigenvalue 1 of `DP`), and the
+                    // point solves the equations as well as they can be.
                     return Termination::Converged {
                         iterations: it + 1,
                         residual: r,
