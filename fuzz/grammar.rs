@@ -853,8 +853,14 @@ impl Gen<'_> {
             // its boundaries (or, at the stick boundary, a stick mapping).
             let mut b = 1 + self.below(n);
             let mut walk = Vec::new();
-            for _ in 0..1 + self.below(4) {
-                let stick = bounds[b - 1] > 100;
+            let steps = 1 + self.below(4);
+            for step in 0..steps {
+                // A stick mapping is followed by one that leaves the stick
+                // boundary into a domain: never two in a row, counting the
+                // turn back (last step) and the wrap to the start (first).
+                let inner = step > 0 && step + 1 < steps;
+                let after_stick = walk.last().is_some_and(|&(d, _, _)| d == 0);
+                let stick = bounds[b - 1] > 100 && inner && !after_stick;
                 let (domain, next) = if stick && self.chance(2) {
                     (0, b)
                 } else if self.chance(4) {
