@@ -111,7 +111,27 @@ pub fn solve_with<M: Model>(
     check: bool,
 ) -> Motion {
     let mut solver = PeriodicSolver::<M>::new(structure);
-    let termination = solver.solve(sim.params(), &mut points, opts);
+    let guess = points.clone();
+    let mut termination = solver.solve(sim.params(), &mut points, opts);
+    if !termination.converged() {
+        // A neutral family: `I − DP` singular, Newton's step singular or
+        // useless, yet solutions nearby. Kept only if `DP` has the eigenvalue 1.
+        let mut family = guess;
+        if let Some((iterations, residual)) =
+            crate::family::solve_min_norm(&solver, sim.params(), &mut family, opts)
+        {
+            let neutral = solver
+                .poincare_jacobian(sim.params(), &family)
+                .is_ok_and(|dp| Stability::of(&dp).has_unit_eigenvalue());
+            if neutral {
+                points = family;
+                termination = Termination::Converged {
+                    iterations,
+                    residual,
+                };
+            }
+        }
+    }
     // Phase origin: 0 <= W t_0 < 2π.
     let shift =
         (points[0].phase / (2.0 * std::f64::consts::PI)).floor() * 2.0 * std::f64::consts::PI;

@@ -291,3 +291,68 @@ fn static_equal_to_kinetic_friction_finds_the_non_stop_motion() {
         assert!((a.phase - b.phase).abs() < 1e-10 && (a.x - b.x).abs() < 1e-10);
     }
 }
+
+/// `orbit` near a member of the neutral family: `I − DP` is singular, so
+/// Newton's plain step is useless ("the line search found no decrease"); the
+/// minimum-norm step converges to a nearby member, which is reported as a
+/// neutral family. A member is `x_max = X0 + δ` at `W t = 0`,
+/// `x_min = −X0 + δ` at `W t = π`; off-family guesses converge onto it, and
+/// the same fallback does not turn a damped motion into a family.
+#[test]
+fn orbit_near_a_family_member_reports_the_neutral_family() {
+    use stickslip::motion;
+    use stickslip::periodic::{NewtonOptions, SwitchingPoint};
+    use stickslip::structure::Structure;
+    let (m, c, q0): (f64, f64, f64) = (2.5, 30.0, 70.0);
+    let a0 = q0 / m;
+    let w = c.sqrt() / 2.0;
+    let x0 = a0 / (c - w * w);
+    let muk = 0.005 * a0 / 9.8;
+    let p = coulomb([m, 0.0, c, 0.0, muk, muk, q0, w]);
+    let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
+    let structure = Structure::parse(Coulomb::INFO, "P_{1_11 2_11}", 1).unwrap();
+    // A member shifted by `dx` with its phases off by up to `dphase`.
+    for (dphase, dx) in [(1e-3, 0.0), (1e-3, 1e-3), (-2e-3, 5e-3)] {
+        let guess = vec![
+            SwitchingPoint {
+                phase: dphase,
+                x: x0 + dx,
+            },
+            SwitchingPoint {
+                phase: PI + 0.5 * dphase,
+                x: -x0 + dx,
+            },
+        ];
+        let motion = motion::solve(&sim, structure.clone(), guess, NewtonOptions::default());
+        let how = format!("guess offsets ({dphase}, {dx})");
+        assert!(motion.is_admissible(), "{how}: {motion:?}");
+        assert!(
+            matches!(Report::of_motion(&sim, &motion), Report::NeutralFamily(_)),
+            "{how}"
+        );
+        // On the family: turning points half a period apart, amplitudes X0 ± δ.
+        let (a, b) = (motion.points[0], motion.points[1]);
+        let delta = a.x - x0;
+        assert!((b.x - (-x0 + delta)).abs() < 1e-9, "{how}: {a:?} {b:?}");
+        assert!(
+            ((b.phase - a.phase).rem_euclid(TAU) - PI).abs() < 1e-9,
+            "{how}"
+        );
+        assert!(
+            (delta - dx).abs() < 1e-2,
+            "{how}: the member is near the guess ({delta})"
+        );
+    }
+    // With damping the motion is isolated: Newton's own step converges and
+    // the eigenvalue 1 is gone.
+    let q = Params { d: 0.05, ..p };
+    let sim = Simulator::<Coulomb>::new(q, SimOptions::default()).unwrap();
+    let guess = vec![
+        SwitchingPoint { phase: 0.0, x: x0 },
+        SwitchingPoint { phase: PI, x: -x0 },
+    ];
+    let motion = motion::solve(&sim, structure, guess, NewtonOptions::default());
+    if motion.termination.converged() {
+        assert!(!motion.stability.unwrap().has_unit_eigenvalue());
+    }
+}
