@@ -717,6 +717,7 @@ fn case3_unbounded_growth_is_a_typed_error() {
             }
             Ok(Attractor::NoMotion(nm)) => assert!(nm.max_v.is_finite(), "{name}: {nm:?}"),
             Ok(Attractor::Stick(s)) => assert!(s.x.is_finite(), "{name}: {s:?}"),
+            Ok(Attractor::Autonomous(a)) => assert!(a.period.is_finite(), "{name}: {a:?}"),
             Err(e) => eprintln!("{name}: attractor::find: {e}"),
         }
         eprintln!(
@@ -725,6 +726,7 @@ fn case3_unbounded_growth_is_a_typed_error() {
                 Ok(Attractor::Periodic(m)) => m.structure.notation(Paper::INFO),
                 Ok(Attractor::NoMotion(_)) => "NM".to_string(),
                 Ok(Attractor::Stick(_)) => "stick".to_string(),
+                Ok(Attractor::Autonomous(_)) => "autonomous".to_string(),
                 Err(e) => e.to_string(),
             }
         );

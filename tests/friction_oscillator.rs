@@ -356,3 +356,56 @@ fn orbit_near_a_family_member_reports_the_neutral_family() {
         assert!(!motion.stability.unwrap().has_unit_eigenvalue());
     }
 }
+
+/// Without forcing the system is autonomous: `simulate` reports the belt
+/// stick-slip cycle by the return of the stick-onset state, with its period
+/// and the stick and slip durations of the closed form above (library and
+/// CLI JSON).
+#[test]
+fn simulate_reports_the_unforced_belt_cycle_as_autonomous() {
+    for (c, v, mus, muk, m) in [(1.0, 0.5, 0.4, 0.3, 1.0), (30.0, 3.0, 0.5, 0.4, 5.0)] {
+        let (a_s, ak) = (mus * 9.8, muk * 9.8);
+        let omega = f64::sqrt(c);
+        let u0 = (a_s - ak) / c;
+        let t_slip = (TAU - 2.0 * (u0 * omega).atan2(v)) / omega;
+        let t_stick = 2.0 * u0 / v;
+        let how = format!("c = {c}, V = {v}");
+        let p = coulomb([m, 0.0, c, v, mus, muk, 0.0, 1.3]);
+        // Started on the belt (from rest at c = 30 the undamped slip never
+        // reaches the belt speed).
+        let cycle = match find(p, 0.0, v, 0.0) {
+            Ok(Attractor::Autonomous(a)) => a,
+            other => panic!("{how}: {other:?}"),
+        };
+        assert!(
+            (cycle.stick - t_stick).abs() < 1e-10 * t_stick,
+            "{how}: {cycle:?}"
+        );
+        assert!(
+            (cycle.slip - t_slip).abs() < 1e-10 * t_slip,
+            "{how}: {cycle:?}"
+        );
+        assert!((cycle.period - t_stick - t_slip).abs() < 1e-10 * cycle.period);
+        assert!((cycle.x - (ak / c - u0)).abs() < 1e-10, "{how}: {cycle:?}");
+        assert_eq!(cycle.steps.len(), 2, "{how}: one stick, one slip");
+        let set = format!("m={m},c={c},V={v},mus={mus},muk={muk},Q0=0,d=0,g=9.8,W=1.3");
+        let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args(["simulate", "--model", "coulomb", "--set", &set, "--json"])
+            .args(["--from", &format!("0,{v},0")])
+            .output()
+            .expect("run the CLI");
+        assert!(out.status.success(), "{out:?}");
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        assert_eq!(json["kind"], "autonomous_cycle", "{json}");
+        let get = |k: &str| json[k].as_f64().expect(k);
+        assert!((get("stick") - t_stick).abs() < 1e-10 * t_stick, "{json}");
+        assert!((get("slip") - t_slip).abs() < 1e-10 * t_slip, "{json}");
+        assert!((get("period") - t_stick - t_slip).abs() < 1e-10 * (t_stick + t_slip));
+    }
+    // With forcing the cycle is not autonomous (the onset test does not apply).
+    let p = coulomb([1.0, 0.0, 1.0, 0.5, 0.4, 0.3, 0.5, 1.3]);
+    assert!(!matches!(
+        find(p, 0.0, 0.0, 0.0),
+        Ok(Attractor::Autonomous(_))
+    ));
+}
