@@ -89,7 +89,7 @@ pub struct AutonomousCycle {
 /// agree to `1e-9` relative; every event in between defines a mapping.
 pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Option<AutonomousCycle> {
     let osc = sim.oscillator();
-    if osc.amplitude != 0.0 || !(osc.frequency > 0.0) {
+    if osc.amplitude != 0.0 || osc.frequency.is_nan() || osc.frequency <= 0.0 {
         return None;
     }
     let onsets: Vec<usize> = (0..events.len())

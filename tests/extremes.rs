@@ -1172,6 +1172,9 @@ fn case4_forcing_frequency_from_1e_3_to_1e3() {
                 "periodic"
             }
             Ok(Attractor::Stick(s)) => panic!("{what}: a permanent stick on a moving belt: {s:?}"),
+            Ok(Attractor::Autonomous(c)) => {
+                panic!("{what}: an autonomous cycle with forcing: {c:?}")
+            }
             Ok(Attractor::NoMotion(nm)) => {
                 // The steady response of the domain, independently: |v| = A0 W / |c_j - W^2 + 2 i d_j W|.
                 let ode = Ode::of::<Paper>(&p, nm.domain);

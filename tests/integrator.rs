@@ -543,14 +543,11 @@ fn the_undamped_w03_case_drifts_in_the_integrator_too() {
         }
     })
     .unwrap();
-    let onsets = |phases: Vec<(f64, f64)>| -> Vec<(f64, f64)> { phases };
-    let r: Vec<(f64, f64)> = onsets(
-        reference
-            .iter()
-            .filter(|e| e.kind == EventKind::StickOnset)
-            .map(|e| (e.phase, e.x))
-            .collect(),
-    );
+    let r: Vec<(f64, f64)> = reference
+        .iter()
+        .filter(|e| e.kind == EventKind::StickOnset)
+        .map(|e| (e.phase, e.x))
+        .collect();
     let s: Vec<(f64, f64)> = simulated
         .iter()
         .filter(|e| e.kind == EventKind::StickOnset)
