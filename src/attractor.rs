@@ -379,8 +379,11 @@ pub fn find<M: Model>(
             }
         }
     }
+    let undamped =
+        (0..M::INFO.domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
     Err(OrbitError::Unsettled {
         periods: opts.max_periods,
+        undamped,
     })
 }
 

@@ -514,7 +514,7 @@ fn same_motion(a: &Motion, b: &Motion) -> bool {
 /// Short text for a start that did not settle.
 fn failure<M: Model>(e: &OrbitError) -> String {
     match e {
-        OrbitError::Unsettled { periods } => format!("unsettled ({periods} periods)"),
+        OrbitError::Unsettled { periods, .. } => format!("unsettled ({periods} periods)"),
         OrbitError::NotConverged(Termination::NotConverged { reason, .. }) => {
             format!("not_converged ({reason})")
         }

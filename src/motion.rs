@@ -68,10 +68,20 @@ pub enum OrbitError {
     #[error("the solution is not a motion: {}", describe_violations(&.0.violations))]
     Inadmissible(Box<Motion>),
     /// The simulation did not settle to a periodic motion or a certified NM.
-    #[error("no periodic motion and no certified NM within {periods} forcing periods")]
+    #[error(
+        "no periodic motion and no certified NM within {periods} forcing periods{}",
+        if *undamped {
+            " (undamped: every domain has zero viscous damping, so transients need not decay; \
+             the motion may drift for ever, quasi-periodically or slowly towards a neutral family)"
+        } else {
+            ""
+        }
+    )]
     Unsettled {
         /// Forcing periods simulated.
         periods: u32,
+        /// No domain has viscous damping (`2 d_j = 0` everywhere).
+        undamped: bool,
     },
     /// No simulation went through the structure, so there is no guess.
     #[error("no simulated motion follows {0}; give a guess")]

@@ -409,3 +409,35 @@ fn simulate_reports_the_unforced_belt_cycle_as_autonomous() {
         Ok(Attractor::Autonomous(_))
     ));
 }
+
+/// An unsettled search says when the model is undamped (no transient decay:
+/// the motion may drift for ever), and only then.
+#[test]
+fn an_unsettled_undamped_motion_says_so() {
+    use stickslip::motion::OrbitError;
+    let opts = AttractorOptions {
+        max_periods: 40,
+        ..AttractorOptions::default()
+    };
+    for (d, undamped) in [(0.0, true), (1e-3, false)] {
+        let p = Params {
+            g: 1.0,
+            ..coulomb([1.0, d, 1.0, 0.0, 0.15, 0.1, 1.0, 0.3])
+        };
+        let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
+        let start = sim.start(0.0, 0.0, 0.0).unwrap();
+        match attractor::find(&sim, start, opts) {
+            Err(e @ OrbitError::Unsettled { .. }) => {
+                assert_eq!(
+                    e,
+                    OrbitError::Unsettled {
+                        periods: 40,
+                        undamped
+                    }
+                );
+                assert_eq!(e.to_string().contains("undamped"), undamped, "{e}");
+            }
+            other => panic!("d = {d}: {other:?}"),
+        }
+    }
+}
