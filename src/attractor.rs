@@ -85,6 +85,69 @@ pub struct PermanentStick {
     pub static_bound: f64,
 }
 
+/// The stick-slip cycle of an autonomous system (no forcing, `A0 = 0`):
+/// time is no longer measured in forcing periods, so the cycle is found by
+/// the return of the state at a stick onset (`x` on the boundary, whose
+/// velocity is fixed), and its period is a time, not a whole number of
+/// forcing periods.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AutonomousCycle {
+    /// The mappings applied over one cycle, from a stick onset.
+    pub steps: Vec<usize>,
+    /// `x` at the stick onset that starts the cycle.
+    pub x: f64,
+    /// `v` there (the boundary's velocity).
+    pub v: f64,
+    /// Phase `W t` of that onset.
+    pub onset: f64,
+    /// Period (time).
+    pub period: f64,
+    /// Time stuck per cycle.
+    pub stick: f64,
+    /// Time slipping per cycle.
+    pub slip: f64,
+}
+
+/// The latest cycle between two stick onsets at the same state, if the
+/// forcing vanishes (`A0 = 0`: the motion is autonomous). The onsets must
+/// agree to `1e-9` relative; every event in between defines a mapping.
+pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Option<AutonomousCycle> {
+    let osc = sim.oscillator();
+    if osc.amplitude != 0.0 || osc.frequency.is_nan() || osc.frequency <= 0.0 {
+        return None;
+    }
+    let onsets: Vec<usize> = (0..events.len())
+        .filter(|&i| events[i].kind == EventKind::StickOnset)
+        .collect();
+    let &last = onsets.last()?;
+    let b = &events[last];
+    let &first = onsets[..onsets.len() - 1].iter().rev().find(|&&i| {
+        let a = &events[i];
+        a.boundary == b.boundary && (a.x - b.x).abs() <= 1e-9 * (1.0 + b.x.abs())
+    })?;
+    let window = &events[first..=last];
+    let mut steps = Vec::with_capacity(window.len() - 1);
+    let (mut stick, mut slip) = (0.0, 0.0);
+    for pair in window.windows(2) {
+        steps.push(mapping_between::<M>(&pair[0], &pair[1])?);
+        let dt = (pair[1].phase - pair[0].phase) / osc.frequency;
+        if pair[0].after == Location::Stick {
+            stick += dt;
+        } else {
+            slip += dt;
+        }
+    }
+    Some(AutonomousCycle {
+        steps,
+        x: b.x,
+        v: sim.velocity(b.boundary),
+        onset: window[0].phase,
+        period: (b.phase - window[0].phase) / osc.frequency,
+        stick,
+        slip,
+    })
+}
+
 /// What a simulation settles to.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Attractor {
@@ -94,6 +157,8 @@ pub enum Attractor {
     NoMotion(NoMotion),
     /// A stick that never ends.
     Stick(PermanentStick),
+    /// The stick-slip cycle of an unforced (autonomous) system.
+    Autonomous(AutonomousCycle),
 }
 
 /// Whether the stick segment `seg` lasts forever. On the stick boundary
@@ -335,6 +400,9 @@ pub fn find<M: Model>(
         if let Some(stick) = permanent_stick(sim, &seg) {
             return Ok(Attractor::Stick(stick));
         }
+        if let Some(cycle) = autonomous_cycle(sim, &events) {
+            return Ok(Attractor::Autonomous(cycle));
+        }
         if count == 0 {
             if let Location::Domain(j) = seg.location {
                 let (x, v) = sim.state_at(&seg, phase);
@@ -403,8 +471,11 @@ pub fn find<M: Model>(
             }
         }
     }
+    let undamped =
+        (0..M::INFO.domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
     Err(OrbitError::Unsettled {
         periods: opts.max_periods,
+        undamped,
     })
 }
 

@@ -20,6 +20,7 @@ pub mod admissible;
 pub mod attractor;
 pub mod crossing;
 pub mod describe;
+pub mod family;
 pub mod homogeneous;
 pub mod integrate;
 pub mod map;

@@ -573,6 +573,21 @@ impl ModelVisitor for Simulate {
                 };
                 return finish(&report, history, title, &self.output, outcome);
             }
+            Ok(Attractor::Autonomous(cycle)) => {
+                let report = Report::of_autonomous(&sim, &cycle);
+                let title = format!(
+                    "{}: autonomous stick-slip cycle, T = {:.6} ({set})",
+                    info.name, cycle.period
+                );
+                let history = || {
+                    let from = cycle.onset.max(phase);
+                    let to = from + cycle.period * sim.oscillator().frequency;
+                    let seg = sim.run(start, from, |_| {}).map_err(|e| e.to_string())?;
+                    History::simulated(&sim, seg, from, to, SAMPLES_PER_PERIOD)
+                        .map_err(|e| e.to_string())
+                };
+                return finish(&report, history, title, &self.output, outcome);
+            }
             Err(OrbitError::NotConverged(t)) => {
                 let report = Report::of_termination::<M>(&t, None);
                 return finish(

@@ -514,7 +514,7 @@ fn same_motion(a: &Motion, b: &Motion) -> bool {
 /// Short text for a start that did not settle.
 fn failure<M: Model>(e: &OrbitError) -> String {
     match e {
-        OrbitError::Unsettled { periods } => format!("unsettled ({periods} periods)"),
+        OrbitError::Unsettled { periods, .. } => format!("unsettled ({periods} periods)"),
         OrbitError::NotConverged(Termination::NotConverged { reason, .. }) => {
             format!("not_converged ({reason})")
         }
@@ -608,6 +608,7 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
     let mut found: Vec<Motion> = Vec::new();
     let mut no_motion = false;
     let mut stick = false;
+    let mut autonomous = false;
     let mut problems: Vec<String> = Vec::new();
     for (k, (x0, v0, phase0)) in starts(&sim).into_iter().enumerate() {
         let outcome = sim
@@ -622,6 +623,7 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
             }
             Ok(Attractor::NoMotion(_)) => no_motion = true,
             Ok(Attractor::Stick(_)) => stick = true,
+            Ok(Attractor::Autonomous(_)) => autonomous = true,
             Err(e) => problems.push(format!("start {}: {}", k + 1, failure::<M>(&e))),
         }
     }
@@ -631,6 +633,9 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
     }
     if stick {
         motions.push(STICK.to_string());
+    }
+    if autonomous {
+        motions.push("autonomous".to_string());
     }
     motions.sort();
     let status = if problems.is_empty() {

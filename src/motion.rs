@@ -68,10 +68,20 @@ pub enum OrbitError {
     #[error("the solution is not a motion: {}", describe_violations(&.0.violations))]
     Inadmissible(Box<Motion>),
     /// The simulation did not settle to a periodic motion or a certified NM.
-    #[error("no periodic motion and no certified NM within {periods} forcing periods")]
+    #[error(
+        "no periodic motion and no certified NM within {periods} forcing periods{}",
+        if *undamped {
+            " (undamped: every domain has zero viscous damping, so transients need not decay; \
+             the motion may drift for ever, quasi-periodically or slowly towards a neutral family)"
+        } else {
+            ""
+        }
+    )]
     Unsettled {
         /// Forcing periods simulated.
         periods: u32,
+        /// No domain has viscous damping (`2 d_j = 0` everywhere).
+        undamped: bool,
     },
     /// The simulation settled on a cycle through more mappings than the
     /// search looks for ([`crate::attractor::AttractorOptions::max_cycle`]).
@@ -122,7 +132,27 @@ pub fn solve_with<M: Model>(
     check: bool,
 ) -> Motion {
     let mut solver = PeriodicSolver::<M>::new(structure);
-    let termination = solver.solve(sim.params(), &mut points, opts);
+    let guess = points.clone();
+    let mut termination = solver.solve(sim.params(), &mut points, opts);
+    if !termination.converged() {
+        // A neutral family: `I − DP` singular, Newton's step singular or
+        // useless, yet solutions nearby. Kept only if `DP` has the eigenvalue 1.
+        let mut family = guess;
+        if let Some((iterations, residual)) =
+            crate::family::solve_min_norm(&solver, sim.params(), &mut family, opts)
+        {
+            let neutral = solver
+                .poincare_jacobian(sim.params(), &family)
+                .is_ok_and(|dp| Stability::of(&dp).has_unit_eigenvalue());
+            if neutral {
+                points = family;
+                termination = Termination::Converged {
+                    iterations,
+                    residual,
+                };
+            }
+        }
+    }
     // Phase origin: 0 <= W t_0 < 2π.
     let shift =
         (points[0].phase / (2.0 * std::f64::consts::PI)).floor() * 2.0 * std::f64::consts::PI;

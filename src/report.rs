@@ -12,7 +12,7 @@ use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
 
 use crate::admissible::Violation;
-use crate::attractor::{NoMotion, PermanentStick};
+use crate::attractor::{AutonomousCycle, NoMotion, PermanentStick};
 use crate::model::{MappingKind, Model};
 use crate::motion::Motion;
 use crate::param::ParamSet;
@@ -83,6 +83,10 @@ pub enum Report {
     /// The mass sticks forever (certified: `|Fnf|` never reaches `as`).
     #[serde(rename = "stick")]
     Stick(StickReport),
+    /// The stick-slip cycle of an unforced system (`A0 = 0`): a period in
+    /// time, found by the return of the stick-onset state.
+    #[serde(rename = "autonomous_cycle")]
+    Autonomous(AutonomousReport),
     /// Newton did not converge (the command exits non-zero).
     #[serde(rename = "not_converged")]
     NotConverged(NotConvergedReport),
@@ -202,6 +206,31 @@ pub struct StickReport {
     pub max_force: f64,
     /// The static friction bound `as`.
     pub static_bound: f64,
+    /// The model's name (text output only).
+    #[serde(skip)]
+    pub model: &'static str,
+}
+
+/// An autonomous stick-slip cycle.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct AutonomousReport {
+    /// The mappings over one cycle from a stick onset, `P_{σm … σ1}`.
+    pub structure: String,
+    /// `x` at the stick onset.
+    pub x: f64,
+    /// `v` there (the belt speed).
+    pub v: f64,
+    /// `W t` of that onset (`W` only sets the time unit of the phase).
+    #[serde(rename = "Wt_onset")]
+    pub onset: f64,
+    /// Period in time.
+    pub period: f64,
+    /// Time stuck per cycle.
+    pub stick: f64,
+    /// Time slipping per cycle.
+    pub slip: f64,
+    /// The model's parameters.
+    pub params: ParamValues,
     /// The model's name (text output only).
     #[serde(skip)]
     pub model: &'static str,
@@ -341,6 +370,28 @@ impl Report {
         })
     }
 
+    /// The report of an autonomous stick-slip cycle.
+    pub fn of_autonomous<M: Model>(sim: &Simulator<M>, a: &AutonomousCycle) -> Self {
+        let info = M::INFO;
+        let names: Vec<&str> = a
+            .steps
+            .iter()
+            .rev()
+            .map(|&k| info.mappings[k].name)
+            .collect();
+        Report::Autonomous(AutonomousReport {
+            structure: format!("P_{{{}}}", names.join(" ")),
+            x: a.x,
+            v: a.v,
+            onset: a.onset,
+            period: a.period,
+            stick: a.stick,
+            slip: a.slip,
+            params: ParamValues::of(sim.params()),
+            model: info.name,
+        })
+    }
+
     /// The report of a Newton failure known only by its termination.
     pub fn of_termination<M: Model>(t: &Termination, structure: Option<String>) -> Self {
         let (newton, reason) = newton_of(t, || None);
@@ -355,7 +406,11 @@ impl Report {
     pub fn is_motion(&self) -> bool {
         matches!(
             self,
-            Report::Periodic(_) | Report::NeutralFamily(_) | Report::NoMotion(_) | Report::Stick(_)
+            Report::Periodic(_)
+                | Report::NeutralFamily(_)
+                | Report::NoMotion(_)
+                | Report::Stick(_)
+                | Report::Autonomous(_)
         )
     }
 
@@ -365,7 +420,8 @@ impl Report {
             Report::Periodic(_)
             | Report::NeutralFamily(_)
             | Report::NoMotion(_)
-            | Report::Stick(_) => None,
+            | Report::Stick(_)
+            | Report::Autonomous(_) => None,
             Report::Inadmissible(r) => {
                 let first = r.violations.first().map_or_else(String::new, |v| {
                     let mapping = r.points.get(v.segment).map_or("?", |p| p.mapping);
@@ -538,6 +594,13 @@ impl fmt::Display for Report {
                 "permanent stick (model {}): the mass sticks from W t = {:.6} on at x = {:.12}, \
                  v = {}; the non-friction force never exceeds {:.6} <= as = {:.6}",
                 r.model, r.since, r.x, r.v, r.max_force, r.static_bound
+            ),
+            Report::Autonomous(r) => writeln!(
+                f,
+                "autonomous stick-slip cycle (no forcing; model {}): {}, period T = {:.12} \
+                 (stick {:.12}, slip {:.12}); the stick begins at x = {:.12}, v = {} \
+                 (W t = {:.6}; W only sets the phase unit)",
+                r.model, r.structure, r.period, r.stick, r.slip, r.x, r.v, r.onset
             ),
             Report::NotConverged(r) => {
                 writeln!(

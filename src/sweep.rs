@@ -401,6 +401,8 @@ fn follow<M: Model>(
             found[0].push(stick_summary(&s));
             Branch::Lost
         }
+        // Unforced: no periodic motion in forcing periods to follow.
+        Ok(Attractor::Autonomous(_)) => Branch::Lost,
         Err(_) => Branch::Lost,
     };
     let mut prev = values[0];
@@ -632,6 +634,7 @@ fn to_branch<M: Model>(a: Result<Attractor, OrbitError>) -> (Branch, String) {
         }
         Ok(Attractor::NoMotion(nm)) => (Branch::NoMotion { domain: nm.domain }, "NM".into()),
         Ok(Attractor::Stick(_)) => (Branch::Lost, "stick".into()),
+        Ok(Attractor::Autonomous(_)) => (Branch::Lost, "autonomous".into()),
         Err(_) => (Branch::Lost, "unsettled".into()),
     }
 }

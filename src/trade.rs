@@ -181,6 +181,9 @@ fn piecewise<M: Model>(p: M::Params) -> Result<(Fingerprint, String, f64), Strin
         Attractor::Periodic(m) => m,
         Attractor::NoMotion(_) => return Err("no motion reaches the belt speed".into()),
         Attractor::Stick(_) => return Err("the mass sticks forever".into()),
+        Attractor::Autonomous(_) => {
+            return Err("no forcing: the stick-slip cycle is autonomous".into())
+        }
     };
     let seconds = start.elapsed().as_secs_f64();
     let info = M::INFO;

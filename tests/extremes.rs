@@ -765,6 +765,7 @@ fn case3_unbounded_growth_is_a_typed_error() {
             }
             Ok(Attractor::NoMotion(nm)) => assert!(nm.max_v.is_finite(), "{name}: {nm:?}"),
             Ok(Attractor::Stick(s)) => assert!(s.x.is_finite(), "{name}: {s:?}"),
+            Ok(Attractor::Autonomous(a)) => assert!(a.period.is_finite(), "{name}: {a:?}"),
             Err(e) => eprintln!("{name}: attractor::find: {e}"),
         }
         eprintln!(
@@ -773,6 +774,7 @@ fn case3_unbounded_growth_is_a_typed_error() {
                 Ok(Attractor::Periodic(m)) => m.structure.notation(Paper::INFO),
                 Ok(Attractor::NoMotion(_)) => "NM".to_string(),
                 Ok(Attractor::Stick(_)) => "stick".to_string(),
+                Ok(Attractor::Autonomous(_)) => "autonomous".to_string(),
                 Err(e) => e.to_string(),
             }
         );
@@ -1218,6 +1220,9 @@ fn case4_forcing_frequency_from_1e_3_to_1e3() {
                 "periodic"
             }
             Ok(Attractor::Stick(s)) => panic!("{what}: a permanent stick on a moving belt: {s:?}"),
+            Ok(Attractor::Autonomous(c)) => {
+                panic!("{what}: an autonomous cycle with forcing: {c:?}")
+            }
             Ok(Attractor::NoMotion(nm)) => {
                 // The steady response of the domain, independently: |v| = A0 W / |c_j - W^2 + 2 i d_j W|.
                 let ode = Ode::of::<Paper>(&p, nm.domain);

@@ -291,3 +291,153 @@ fn static_equal_to_kinetic_friction_finds_the_non_stop_motion() {
         assert!((a.phase - b.phase).abs() < 1e-10 && (a.x - b.x).abs() < 1e-10);
     }
 }
+
+/// `orbit` near a member of the neutral family: `I − DP` is singular, so
+/// Newton's plain step is useless ("the line search found no decrease"); the
+/// minimum-norm step converges to a nearby member, which is reported as a
+/// neutral family. A member is `x_max = X0 + δ` at `W t = 0`,
+/// `x_min = −X0 + δ` at `W t = π`; off-family guesses converge onto it, and
+/// the same fallback does not turn a damped motion into a family.
+#[test]
+fn orbit_near_a_family_member_reports_the_neutral_family() {
+    use stickslip::motion;
+    use stickslip::periodic::{NewtonOptions, SwitchingPoint};
+    use stickslip::structure::Structure;
+    let (m, c, q0): (f64, f64, f64) = (2.5, 30.0, 70.0);
+    let a0 = q0 / m;
+    let w = c.sqrt() / 2.0;
+    let x0 = a0 / (c - w * w);
+    let muk = 0.005 * a0 / 9.8;
+    let p = coulomb([m, 0.0, c, 0.0, muk, muk, q0, w]);
+    let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
+    let structure = Structure::parse(Coulomb::INFO, "P_{1_11 2_11}", 1).unwrap();
+    // A member shifted by `dx` with its phases off by up to `dphase`.
+    for (dphase, dx) in [(1e-3, 0.0), (1e-3, 1e-3), (-2e-3, 5e-3)] {
+        let guess = vec![
+            SwitchingPoint {
+                phase: dphase,
+                x: x0 + dx,
+            },
+            SwitchingPoint {
+                phase: PI + 0.5 * dphase,
+                x: -x0 + dx,
+            },
+        ];
+        let motion = motion::solve(&sim, structure.clone(), guess, NewtonOptions::default());
+        let how = format!("guess offsets ({dphase}, {dx})");
+        assert!(motion.is_admissible(), "{how}: {motion:?}");
+        assert!(
+            matches!(Report::of_motion(&sim, &motion), Report::NeutralFamily(_)),
+            "{how}"
+        );
+        // On the family: turning points half a period apart, amplitudes X0 ± δ.
+        let (a, b) = (motion.points[0], motion.points[1]);
+        let delta = a.x - x0;
+        assert!((b.x - (-x0 + delta)).abs() < 1e-9, "{how}: {a:?} {b:?}");
+        assert!(
+            ((b.phase - a.phase).rem_euclid(TAU) - PI).abs() < 1e-9,
+            "{how}"
+        );
+        assert!(
+            (delta - dx).abs() < 1e-2,
+            "{how}: the member is near the guess ({delta})"
+        );
+    }
+    // With damping the motion is isolated: Newton's own step converges and
+    // the eigenvalue 1 is gone.
+    let q = Params { d: 0.05, ..p };
+    let sim = Simulator::<Coulomb>::new(q, SimOptions::default()).unwrap();
+    let guess = vec![
+        SwitchingPoint { phase: 0.0, x: x0 },
+        SwitchingPoint { phase: PI, x: -x0 },
+    ];
+    let motion = motion::solve(&sim, structure, guess, NewtonOptions::default());
+    if motion.termination.converged() {
+        assert!(!motion.stability.unwrap().has_unit_eigenvalue());
+    }
+}
+
+/// Without forcing the system is autonomous: `simulate` reports the belt
+/// stick-slip cycle by the return of the stick-onset state, with its period
+/// and the stick and slip durations of the closed form above (library and
+/// CLI JSON).
+#[test]
+fn simulate_reports_the_unforced_belt_cycle_as_autonomous() {
+    for (c, v, mus, muk, m) in [(1.0, 0.5, 0.4, 0.3, 1.0), (30.0, 3.0, 0.5, 0.4, 5.0)] {
+        let (a_s, ak) = (mus * 9.8, muk * 9.8);
+        let omega = f64::sqrt(c);
+        let u0 = (a_s - ak) / c;
+        let t_slip = (TAU - 2.0 * (u0 * omega).atan2(v)) / omega;
+        let t_stick = 2.0 * u0 / v;
+        let how = format!("c = {c}, V = {v}");
+        let p = coulomb([m, 0.0, c, v, mus, muk, 0.0, 1.3]);
+        // Started on the belt (from rest at c = 30 the undamped slip never
+        // reaches the belt speed).
+        let cycle = match find(p, 0.0, v, 0.0) {
+            Ok(Attractor::Autonomous(a)) => a,
+            other => panic!("{how}: {other:?}"),
+        };
+        assert!(
+            (cycle.stick - t_stick).abs() < 1e-10 * t_stick,
+            "{how}: {cycle:?}"
+        );
+        assert!(
+            (cycle.slip - t_slip).abs() < 1e-10 * t_slip,
+            "{how}: {cycle:?}"
+        );
+        assert!((cycle.period - t_stick - t_slip).abs() < 1e-10 * cycle.period);
+        assert!((cycle.x - (ak / c - u0)).abs() < 1e-10, "{how}: {cycle:?}");
+        assert_eq!(cycle.steps.len(), 2, "{how}: one stick, one slip");
+        let set = format!("m={m},c={c},V={v},mus={mus},muk={muk},Q0=0,d=0,g=9.8,W=1.3");
+        let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args(["simulate", "--model", "coulomb", "--set", &set, "--json"])
+            .args(["--from", &format!("0,{v},0")])
+            .output()
+            .expect("run the CLI");
+        assert!(out.status.success(), "{out:?}");
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        assert_eq!(json["kind"], "autonomous_cycle", "{json}");
+        let get = |k: &str| json[k].as_f64().expect(k);
+        assert!((get("stick") - t_stick).abs() < 1e-10 * t_stick, "{json}");
+        assert!((get("slip") - t_slip).abs() < 1e-10 * t_slip, "{json}");
+        assert!((get("period") - t_stick - t_slip).abs() < 1e-10 * (t_stick + t_slip));
+    }
+    // With forcing the cycle is not autonomous (the onset test does not apply).
+    let p = coulomb([1.0, 0.0, 1.0, 0.5, 0.4, 0.3, 0.5, 1.3]);
+    assert!(!matches!(
+        find(p, 0.0, 0.0, 0.0),
+        Ok(Attractor::Autonomous(_))
+    ));
+}
+
+/// An unsettled search says when the model is undamped (no transient decay:
+/// the motion may drift for ever), and only then.
+#[test]
+fn an_unsettled_undamped_motion_says_so() {
+    use stickslip::motion::OrbitError;
+    let opts = AttractorOptions {
+        max_periods: 40,
+        ..AttractorOptions::default()
+    };
+    for (d, undamped) in [(0.0, true), (1e-3, false)] {
+        let p = Params {
+            g: 1.0,
+            ..coulomb([1.0, d, 1.0, 0.0, 0.15, 0.1, 1.0, 0.3])
+        };
+        let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).unwrap();
+        let start = sim.start(0.0, 0.0, 0.0).unwrap();
+        match attractor::find(&sim, start, opts) {
+            Err(e @ OrbitError::Unsettled { .. }) => {
+                assert_eq!(
+                    e,
+                    OrbitError::Unsettled {
+                        periods: 40,
+                        undamped
+                    }
+                );
+                assert_eq!(e.to_string().contains("undamped"), undamped, "{e}");
+            }
+            other => panic!("d = {d}: {other:?}"),
+        }
+    }
+}

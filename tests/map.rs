@@ -111,6 +111,9 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
             }
             Ok(Attractor::NoMotion(_)) => assert!(p.motions.iter().any(|m| m == "NM"), "{p:?}"),
             Ok(Attractor::Stick(_)) => assert!(p.motions.iter().any(|m| m == "stick"), "{p:?}"),
+            Ok(Attractor::Autonomous(_)) => {
+                assert!(p.motions.iter().any(|m| m == "autonomous"), "{p:?}")
+            }
             Err(e) => assert!(p.status.contains("start 1"), "{e} but {p:?}"),
         }
     }

@@ -90,6 +90,7 @@ fn simulation_from_rest_finds_the_reference_motions() {
             Attractor::Periodic(motion) => assert_matches(&r, &motion, "simulate"),
             Attractor::NoMotion(nm) => panic!("{}: found NM {nm:?}", r.structure),
             Attractor::Stick(s) => panic!("{}: found a stick {s:?}", r.structure),
+            Attractor::Autonomous(a) => panic!("{}: found an autonomous cycle {a:?}", r.structure),
         }
     }
 }
@@ -112,5 +113,6 @@ fn no_motion_at_w_1_is_certified() {
             panic!("expected NM, found {}", m.structure.notation(Paper::INFO))
         }
         Attractor::Stick(s) => panic!("expected NM, found a stick {s:?}"),
+        Attractor::Autonomous(a) => panic!("expected NM, found an autonomous cycle {a:?}"),
     }
 }

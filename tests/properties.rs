@@ -130,6 +130,7 @@ fn check_attractor(p: Params) -> Result<(), TestCaseError> {
                 ),
                 Ok(Attractor::NoMotion(nm)) => format!("NM in domain {}", nm.domain),
                 Ok(Attractor::Stick(s)) => format!("stick at x = {}", s.x),
+                Ok(Attractor::Autonomous(a)) => format!("autonomous cycle {a:?}"),
                 Err(e) => format!("error: {e}"),
             }
         );
@@ -157,6 +158,9 @@ fn check_attractor(p: Params) -> Result<(), TestCaseError> {
         }
         Ok(Attractor::Stick(s)) => {
             prop_assert!(false, "a permanent stick on a moving belt: {s:?}");
+        }
+        Ok(Attractor::Autonomous(a)) => {
+            prop_assert!(false, "an autonomous cycle with forcing: {a:?}");
         }
         Ok(Attractor::NoMotion(nm)) => {
             let dom = Paper::INFO.domains[nm.domain];
