@@ -149,7 +149,9 @@ pub fn canonical_tokens(tokens: TokenStream) -> TokenStream {
         group: None,
     }];
     loop {
-        let top = stack.last_mut().expect("the outermost frame is never popped");
+        let top = stack
+            .last_mut()
+            .expect("the outermost frame is never popped");
         match top.rest.next() {
             Some(TokenTree::Group(g)) => stack.push(Frame {
                 rest: g.stream().into_iter(),

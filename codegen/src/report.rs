@@ -95,7 +95,10 @@ impl Report {
                 let (mut start, mut end) = (d.span.start(), d.span.end());
                 if let Some((line, col)) = d.at {
                     // Found in the text before tokens: one character there.
-                    start = proc_macro2::LineColumn { line, column: col - 1 };
+                    start = proc_macro2::LineColumn {
+                        line,
+                        column: col - 1,
+                    };
                     end = proc_macro2::LineColumn { line, column: col };
                 }
                 // Line 0: a span with no place in the file (none is made
