@@ -473,10 +473,174 @@ pub fn find<M: Model>(
     }
     let undamped =
         (0..M::INFO.domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
+    if undamped {
+        if let Some(motion) = neutral_edge(sim, &events, cap, opts.newton) {
+            return Ok(Attractor::Periodic(motion));
+        }
+    }
     Err(OrbitError::Unsettled {
         periods: opts.max_periods,
         undamped,
     })
+}
+
+/// Relative tolerance on a touched admissibility condition: the edge member of
+/// a neutral family touches `|Fnf| = as` at a turning point.
+const EDGE_TOL: f64 = 1e-9;
+
+/// An undamped search that did not settle may be creeping towards the edge of
+/// a neutral family (the undamped Coulomb oscillator at `W = sqrt(c) / (2 n)`
+/// from rest: a stick whose length shrinks like `N^(-1/2)`, the onset
+/// approaching the non-stop member whose turning point has `|Fnf| = as`).
+/// The latest loose cycle with its stick mappings dropped is solved by the
+/// family solver; it is returned if it is admissible up to a touch
+/// (`margin >= -EDGE_TOL` relative) and `DP` has the eigenvalue 1.
+fn neutral_edge<M: Model>(
+    sim: &Simulator<M>,
+    events: &[Event],
+    cap: usize,
+    newton: NewtonOptions,
+) -> Option<Motion> {
+    let info = M::INFO;
+    for tol in [1e-4, 1e-3, 1e-2] {
+        let Some((m, periods)) = detect_cycle(events, cap, tol) else {
+            continue;
+        };
+        let n = events.len();
+        let window = &events[n - 1 - m..];
+        let mut steps = Vec::with_capacity(m);
+        let mut points: Vec<SwitchingPoint> = Vec::with_capacity(m);
+        // The point that starts the next kept mapping: a stick's onset.
+        let mut pending: Option<SwitchingPoint> = None;
+        for i in 0..m {
+            let idx = mapping_between::<M>(&window[i], &window[i + 1])?;
+            let here = SwitchingPoint {
+                phase: window[i].phase,
+                x: window[i].x,
+            };
+            if info.mappings[idx].kind == MappingKind::Stick {
+                pending.get_or_insert(here);
+                continue;
+            }
+            steps.push(idx);
+            points.push(pending.take().unwrap_or(here));
+        }
+        if steps.is_empty() || steps.len() == m {
+            return None;
+        }
+        // A stick dropped at the window's end belongs to the first kept mapping.
+        if let Some(onset) = pending {
+            points[0] = SwitchingPoint {
+                phase: onset.phase - TAU * periods as f64,
+                x: onset.x,
+            };
+        }
+        let structure = Structure::from_indices(info, &steps, periods).ok()?;
+        let (canonical, offset) = structure.canonical(info);
+        let k = steps.len();
+        let cycle = TAU * periods as f64;
+        let rotated: Vec<SwitchingPoint> = (0..k)
+            .map(|j| {
+                let pt = points[(offset + j) % k];
+                let later = if offset + j >= k { cycle } else { 0.0 };
+                SwitchingPoint {
+                    phase: pt.phase + later,
+                    x: pt.x,
+                }
+            })
+            .collect();
+        let motion = solve(sim, canonical, rotated, newton);
+        if let Some(edge) = to_edge(sim, motion, newton) {
+            return Some(edge);
+        }
+    }
+    None
+}
+
+/// Whether `motion` is a neutral-family member that is admissible up to a
+/// touch; `Ok` with the touched conditions cleared, or `Err` with the most
+/// negative relative margin (`None` if it is not a neutral member at all).
+fn edge_check(mut motion: Motion) -> Result<Motion, Option<f64>> {
+    if !motion.termination.converged() || !motion.stability.is_some_and(|s| s.has_unit_eigenvalue())
+    {
+        return Err(None);
+    }
+    let worst = motion
+        .violations
+        .iter()
+        .map(|v| v.margin / (1.0 + v.margin.abs()))
+        .fold(0.0_f64, f64::min);
+    if worst >= -EDGE_TOL {
+        motion.violations.clear();
+        Ok(motion)
+    } else {
+        Err(Some(worst))
+    }
+}
+
+/// From a member of a neutral family that violates an admissibility condition
+/// (the family's continuation past its edge), walk along the family to where
+/// the worst margin is zero: secant steps along the null direction of
+/// `I − DP` at the first point, each re-solved by the family solver.
+fn to_edge<M: Model>(sim: &Simulator<M>, motion: Motion, newton: NewtonOptions) -> Option<Motion> {
+    let current = motion;
+    let (s0, f0) = match edge_check(current.clone()) {
+        Ok(m) => return Some(m),
+        Err(None) => return None,
+        Err(Some(f)) => (0.0, f),
+    };
+    // `DP` is ordered `(W t, x)`.
+    let dp = current.dp?;
+    let svd = (nalgebra::Matrix2::identity() - dp).svd(false, true);
+    let v_t = svd.v_t?;
+    let i = svd.singular_values.imin();
+    let dir = v_t.row(i).transpose();
+    let base = current.points.clone();
+    let scale = 1.0 + base[0].x.abs();
+    let solve_at = |s: f64| {
+        let mut guess = base.clone();
+        guess[0] = SwitchingPoint {
+            phase: base[0].phase + s * dir[0],
+            x: base[0].x + s * dir[1],
+        };
+        solve(sim, current.structure.clone(), guess, newton)
+    };
+    let mut s1 = 1e-3 * scale;
+    let (mut sp, mut fp) = (s0, f0);
+    for _ in 0..30 {
+        match edge_check(solve_at(s1)) {
+            Ok(mut inside) => {
+                // Past the edge: bisect between the last violating member
+                // and this admissible one, keeping the admissible side.
+                let (mut out, mut ins) = (sp, s1);
+                for _ in 0..60 {
+                    if (ins - out).abs() <= 1e-13 * scale {
+                        break;
+                    }
+                    let mid = 0.5 * (out + ins);
+                    match edge_check(solve_at(mid)) {
+                        Ok(m) => {
+                            inside = m;
+                            ins = mid;
+                        }
+                        Err(Some(_)) => out = mid,
+                        Err(None) => break,
+                    }
+                }
+                return Some(inside);
+            }
+            Err(None) => return None,
+            Err(Some(f1)) => {
+                if f1 == fp {
+                    return None;
+                }
+                let next = s1 - f1 * (s1 - sp) / (f1 - fp);
+                (sp, fp) = (s1, f1);
+                s1 = next;
+            }
+        }
+    }
+    None
 }
 
 /// A cycle found as `r` repetitions of a shorter one (a slowly alternating

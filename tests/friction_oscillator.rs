@@ -441,3 +441,46 @@ fn an_unsettled_undamped_motion_says_so() {
         }
     }
 }
+
+/// Undamped at W = sqrt(c) / 2 (n = 1) from rest, the motion keeps a stick
+/// whose length shrinks like N^(-1/2): it creeps towards the edge member of
+/// the neutral family (the non-stop motion whose turning point has
+/// |Fnf| = as exactly). `simulate` names the family, with the eigenvalue 1;
+/// with a little damping the family is gone and so is the claim.
+#[test]
+fn simulate_from_rest_finds_the_edge_of_the_neutral_family() {
+    let run = |d: f64| -> serde_json::Value {
+        let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args([
+                "simulate",
+                "--model",
+                "coulomb",
+                "--set",
+                &format!("m=1,c=1,g=1,d={d},V=0,mus=0.1,muk=0.1,Q0=1,W=0.5"),
+                "--json",
+            ])
+            .output()
+            .expect("run the CLI");
+        serde_json::from_slice(&out.stdout).expect("JSON")
+    };
+    let json = run(0.0);
+    assert_eq!(json["kind"], "neutral_family", "{json}");
+    let eig = json["eigenvalues"].as_array().expect("eigenvalues");
+    let unit = eig.iter().any(|e| {
+        let (re, im) = (e[0].as_f64().unwrap(), e[1].as_f64().unwrap());
+        (re - 1.0).abs() < 1e-9 && im.abs() < 1e-9
+    });
+    assert!(unit, "{eig:?}");
+    // The edge: at one turning point |Fnf| = |Q0 cos(W t) − c x| = mus g.
+    let points = json["points"].as_array().expect("points");
+    let edge = points
+        .iter()
+        .map(|p| {
+            let (wt, x) = (p["Wt"].as_f64().unwrap(), p["x"].as_f64().unwrap());
+            ((wt.cos() - x).abs() - 0.1).abs()
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!(edge < 1e-8, "distance from the edge {edge:e}");
+    let damped = run(1e-3);
+    assert_ne!(damped["kind"], "neutral_family", "{damped}");
+}
