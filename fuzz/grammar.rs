@@ -52,20 +52,11 @@ pub fn model_from_bytes(data: &[u8]) -> String {
     text
 }
 
-/// Identifiers a model author (or an attacker) might choose: ordinary
-/// names, Rust keywords and reserved words, raw identifiers, names of the
-/// generated code's own items and of std, the language's keywords,
-/// non-ASCII and long names.
-const HOSTILE: &[&str] = &[
-    "x",
-    "p",
-    "t",
-    "s",
-    "q",
-    "j",
-    "k",
-    "n",
-    "w",
+/// Hostile identifiers beyond [`LEGAL_HOSTILE`]: Rust keywords and reserved
+/// words, raw identifiers, the language's keywords and function names,
+/// look-alikes of generated labels, letters that NFC changes (µ, Ω). Together the
+/// two lists are every name a model author (or an attacker) might choose.
+const RESERVED_HOSTILE: &[&str] = &[
     "self",
     "Self",
     "super",
@@ -85,28 +76,6 @@ const HOSTILE: &[&str] = &[
     "r#type",
     "r#match",
     "_",
-    "__",
-    "_x",
-    "Params",
-    "ParamSet",
-    "Model",
-    "INFO",
-    "SMOOTH_INFO",
-    "Coefficients",
-    "Oscillator",
-    "std",
-    "core",
-    "f64",
-    "usize",
-    "Option",
-    "Some",
-    "None",
-    "Ok",
-    "Err",
-    "Vec",
-    "String",
-    "TAU",
-    "PI",
     "v",
     "model",
     "param",
@@ -120,31 +89,15 @@ const HOSTILE: &[&str] = &[
     "free",
     "structures",
     "pieces",
-    "mass",
-    "damping",
-    "stiffness",
-    "forcing",
-    "frequency",
-    "belt",
-    "range",
-    "kinetic",
-    "exp",
     "ln",
     "sqrt",
-    "sin",
     "cos",
-    "abs",
     "sign",
     "powi",
-    "Sigma1",
     "Sigma0",
     "Sigma",
-    "Tau1",
-    "é",
     "µ",
     "Ω",
-    "naïve",
-    "a_very_long_parameter_name_that_goes_on_and_on_and_on_for_a_while_0123456789",
 ];
 
 /// Hostile names the language accepts as identifiers (not Rust keywords).
@@ -309,7 +262,14 @@ impl Gen<'_> {
         }
         match self.r.byte() % 8 {
             0..=4 => self.pick(PLAIN).to_string(),
-            5 | 6 => self.pick(HOSTILE).to_string(),
+            5 | 6 => {
+                // Any hostile name: legal or reserved.
+                let k = self.below(LEGAL_HOSTILE.len() + RESERVED_HOSTILE.len());
+                match LEGAL_HOSTILE.get(k) {
+                    Some(n) => n.to_string(),
+                    None => RESERVED_HOSTILE[k - LEGAL_HOSTILE.len()].to_string(),
+                }
+            }
             _ => format!("{}{}", self.pick(PLAIN), self.r.byte()),
         }
     }
