@@ -146,16 +146,16 @@ impl Writer<'_> {
         match (self.g.as_const(d), self.g.as_const(c)) {
             (Some(dv), Some(cv)) if dv * dv < cv => {
                 let (om, _) = literal((cv - dv * dv).sqrt());
-                quote!(::stickslip::homogeneous::underdamped(#dt, #om, #tt))
+                quote!(::stickslip::model::homogeneous::underdamped(#dt, #om, #tt))
             }
             (Some(dv), Some(cv)) if dv * dv > cv => {
                 let ct = self.expr(c).0;
-                quote!(::stickslip::homogeneous::overdamped(#dt, #ct, #tt))
+                quote!(::stickslip::model::homogeneous::overdamped(#dt, #ct, #tt))
             }
-            (Some(_), Some(_)) => quote!(::stickslip::homogeneous::critical(#dt, #tt)),
+            (Some(_), Some(_)) => quote!(::stickslip::model::homogeneous::critical(#dt, #tt)),
             _ => {
                 let ct = self.expr(c).0;
-                quote!(::stickslip::homogeneous::general(#dt, #ct, #tt))
+                quote!(::stickslip::model::homogeneous::general(#dt, #ct, #tt))
             }
         }
     }
@@ -475,9 +475,9 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let smooth_check = quote! {
             fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
                 let p = self;
-                ::stickslip::param::check_values(self, &INFO)?;
+                ::stickslip::model::param::check_values(self, &INFO)?;
                 #cstmts
-                ::stickslip::param::check_conditions(&INFO, ::stickslip::param::Conditions {
+                ::stickslip::model::param::check_conditions(&INFO, ::stickslip::model::param::Conditions {
                     mass: #cm,
                     stiffness: #cs,
                     frequency: #cw,
@@ -505,7 +505,7 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
         };
 
         /// Static description of the law.
-        pub static SMOOTH_INFO: ::stickslip::smooth::SmoothInfo = ::stickslip::smooth::SmoothInfo {
+        pub static SMOOTH_INFO: ::stickslip::model::smooth::SmoothInfo = ::stickslip::model::smooth::SmoothInfo {
             name: #name,
             doc: #docs,
             params: INFO.params,
@@ -518,9 +518,9 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #type_ident;
 
-        impl ::stickslip::smooth::SmoothModel for #type_ident {
+        impl ::stickslip::model::smooth::SmoothModel for #type_ident {
             type Params = Params;
-            const INFO: &'static ::stickslip::smooth::SmoothInfo = &SMOOTH_INFO;
+            const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &SMOOTH_INFO;
             #[inline]
             fn oscillator(p: &Params) -> ::stickslip::Oscillator {
                 #ostmts
@@ -609,9 +609,9 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let check_fn = quote! {
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_values(self, &INFO)?;
             #cstmts
-            ::stickslip::param::check_conditions(&INFO, ::stickslip::param::Conditions {
+            ::stickslip::model::param::check_conditions(&INFO, ::stickslip::model::param::Conditions {
                 mass: #mass_t,
                 stiffness: #stiff_t,
                 frequency: #freq_t,
