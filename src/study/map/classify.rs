@@ -1,0 +1,179 @@
+//! What lives at one grid point: the attractors reached from the point's
+//! starts, named as on the map ([`classify_point`]).
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+use crate::dynamics::simulate::{SimOptions, Simulator};
+use crate::model::param::ParamSet;
+use crate::model::Model;
+use crate::orbit::attractor::{self, Attractor, AttractorOptions};
+use crate::orbit::motion::{Motion, OrbitError};
+use crate::orbit::periodic::Termination;
+
+use super::file::PointResult;
+use super::grid::GridAxis;
+use super::{MAX_PERIODS, NO_MOTION, STICK};
+
+/// The motion's name on the map: its structure, with `^N` for `N > 1`.
+pub fn motion_label<M: Model>(motion: &Motion) -> String {
+    let n = motion.structure.periods();
+    let s = motion.structure.notation(M::INFO);
+    if n > 1 {
+        format!("{s}^{n}")
+    } else {
+        s
+    }
+}
+
+/// Whether two motions are the same orbit: same structure and period, and
+/// the first switching point of one is (modulo 2π in phase) a switching point of the other.
+fn same_motion(a: &Motion, b: &Motion) -> bool {
+    if a.structure != b.structure {
+        // A cycle started elsewhere is the same cycle only if one is a rotation of the other;
+        // both come canonical from `attractor::find`, so a difference means different motions.
+        return false;
+    }
+    let Some(p) = a.points.first() else {
+        return false;
+    };
+    b.points.iter().any(|q| {
+        let d = (p.phase - q.phase).rem_euclid(TAU);
+        let d = d.min(TAU - d);
+        d < 1e-6 && (p.x - q.x).abs() < 1e-6 * (1.0 + p.x.abs())
+    })
+}
+
+/// Short text for a start that did not settle.
+fn failure<M: Model>(e: &OrbitError) -> String {
+    match e {
+        OrbitError::Unsettled { periods, .. } => format!("unsettled ({periods} periods)"),
+        OrbitError::NotConverged(Termination::NotConverged { reason, .. }) => {
+            format!("not_converged ({reason})")
+        }
+        OrbitError::NotConverged(Termination::Singular { reason, .. }) => {
+            format!("not_converged (singular: {reason})")
+        }
+        OrbitError::Inadmissible(m) => {
+            format!("inadmissible ({})", motion_label::<M>(m))
+        }
+        OrbitError::Simulation(e) => format!("simulation_error ({e})"),
+        other => format!("error ({other})"),
+    }
+}
+
+/// The two starts of every grid point: rest, and `v` one above the stick
+/// boundary (or the highest boundary) half a forcing period later.
+fn starts<M: Model>(sim: &Simulator<M>) -> [(f64, f64, f64); 2] {
+    let info = M::INFO;
+    let k = info
+        .stick_boundary()
+        .unwrap_or(info.boundaries.len().saturating_sub(1));
+    let v = if info.boundaries.is_empty() {
+        1.0
+    } else {
+        sim.velocity(k) + 1.0
+    };
+    [(0.0, 0.0, 0.0), (0.0, v, std::f64::consts::PI)]
+}
+
+/// Which motions exist at grid point `index` (see the module doc). Never
+/// panics on bad parameters: they give the status `invalid: …`.
+pub fn classify_point<M: Model>(
+    base: &M::Params,
+    x_axis: &GridAxis,
+    y_axis: &GridAxis,
+    index: usize,
+) -> PointResult {
+    let nx = x_axis.count.max(1);
+    let (ix, iy) = (index % nx, index / nx);
+    let (x, y) = (x_axis.value(ix), y_axis.value(iy));
+    let mut result = PointResult {
+        index,
+        x,
+        y,
+        status: String::new(),
+        motions: Vec::new(),
+    };
+    let mut p = *base;
+    for (axis, value) in [(x_axis, x), (y_axis, y)] {
+        match M::Params::index_of(&axis.name) {
+            Some(i) => p.set(i, value),
+            None => {
+                let e = axis.check_for::<M>().expect_err("not a run-time parameter");
+                result.status = format!("invalid: {e}");
+                return result;
+            }
+        }
+    }
+    if let Err(e) = p.check() {
+        result.status = format!("invalid: {e}");
+        return result;
+    }
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| settle::<M>(p)));
+    match outcome {
+        Ok((status, motions)) => {
+            result.status = status;
+            result.motions = motions;
+        }
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown".to_string());
+            result.status = format!("panic: {what}");
+        }
+    }
+    result
+}
+
+/// Simulate from both starts at checked parameters `p`: `(status, motions)`.
+fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
+    let sim = match Simulator::<M>::new(p, SimOptions::default()) {
+        Ok(sim) => sim,
+        Err(e) => return (format!("invalid: {e}"), Vec::new()),
+    };
+    let opts = AttractorOptions {
+        max_periods: MAX_PERIODS,
+        ..AttractorOptions::default()
+    };
+    let mut found: Vec<Motion> = Vec::new();
+    let mut no_motion = false;
+    let mut stick = false;
+    let mut autonomous = false;
+    let mut problems: Vec<String> = Vec::new();
+    for (k, (x0, v0, phase0)) in starts(&sim).into_iter().enumerate() {
+        let outcome = sim
+            .start(x0, v0, phase0)
+            .map_err(OrbitError::from)
+            .and_then(|seg| attractor::find(&sim, seg, opts));
+        match outcome {
+            Ok(Attractor::Periodic(m)) => {
+                if !found.iter().any(|f| same_motion(f, &m)) {
+                    found.push(m);
+                }
+            }
+            Ok(Attractor::NoMotion(_)) => no_motion = true,
+            Ok(Attractor::Stick(_)) => stick = true,
+            Ok(Attractor::Autonomous(_)) => autonomous = true,
+            Err(e) => problems.push(format!("start {}: {}", k + 1, failure::<M>(&e))),
+        }
+    }
+    let mut motions: Vec<String> = found.iter().map(motion_label::<M>).collect();
+    if no_motion {
+        motions.push(NO_MOTION.to_string());
+    }
+    if stick {
+        motions.push(STICK.to_string());
+    }
+    if autonomous {
+        motions.push("autonomous".to_string());
+    }
+    motions.sort();
+    let status = if problems.is_empty() {
+        "ok".to_string()
+    } else {
+        problems.join("; ")
+    };
+    (status, motions)
+}

@@ -1,0 +1,181 @@
+//! The grid of a map: its two axes ([`GridAxis`]) and the shards a cluster
+//! job array splits it into ([`Shard`]).
+
+use crate::model::param::{ParamError, ParamSet};
+use crate::model::Model;
+
+use super::error::{AxisError, MapError};
+
+/// One axis of a map: `count` values of parameter `name` from `from` to `to`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridAxis {
+    /// The parameter.
+    pub name: String,
+    /// First value.
+    pub from: f64,
+    /// Last value (may be below `from`).
+    pub to: f64,
+    /// Number of values (at least 1).
+    pub count: usize,
+}
+
+impl GridAxis {
+    /// Parse `NAME=FROM:TO:COUNT` without knowing the model (see [`parse_for`](Self::parse_for)).
+    pub fn parse(text: &str) -> Result<Self, AxisError> {
+        let syntax = || AxisError::Syntax {
+            text: text.to_string(),
+        };
+        let (name, range) = text.split_once('=').ok_or_else(syntax)?;
+        let name = name.trim();
+        let valid_name = !name.is_empty()
+            && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !name.starts_with(|c: char| c.is_ascii_digit());
+        if !valid_name {
+            return Err(syntax());
+        }
+        let parts: Vec<&str> = range.split(':').map(str::trim).collect();
+        let [from, to, count] = parts[..] else {
+            return Err(syntax());
+        };
+        let number = |s: &str| match s.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(AxisError::NotFinite {
+                text: text.to_string(),
+                value: s.to_string(),
+            }),
+        };
+        let (from, to) = (number(from)?, number(to)?);
+        let count = match count.parse::<usize>() {
+            Ok(n) if n > 0 => n,
+            _ => {
+                return Err(AxisError::Count {
+                    text: text.to_string(),
+                    value: count.to_string(),
+                })
+            }
+        };
+        Ok(Self {
+            name: name.to_string(),
+            from,
+            to,
+            count,
+        })
+    }
+
+    /// Parse `NAME=FROM:TO:COUNT` for model `M`: `NAME` must be one of its
+    /// run-time parameters ([`ParamSet::NAMES`]).
+    pub fn parse_for<M: Model>(text: &str) -> Result<Self, AxisError> {
+        let axis = Self::parse(text)?;
+        axis.check_for::<M>()
+            .map_err(|source| AxisError::Parameter {
+                text: text.to_string(),
+                source,
+            })?;
+        Ok(axis)
+    }
+
+    /// Whether the axis's parameter is a run-time parameter of `M`.
+    pub fn check_for<M: Model>(&self) -> Result<(), ParamError> {
+        if M::Params::index_of(&self.name).is_some() {
+            return Ok(());
+        }
+        let info = M::INFO;
+        let free = M::Params::NAMES.join(", ");
+        Err(match info.params.iter().find(|p| p.name == self.name) {
+            Some(p) => ParamError::Fixed {
+                name: self.name.clone(),
+                model: info.name.to_string(),
+                value: p.default,
+                free,
+            },
+            None => ParamError::Unknown {
+                name: self.name.clone(),
+                model: info.name.to_string(),
+                known: free,
+            },
+        })
+    }
+
+    /// Value `i` (`0 ≤ i < count`): `from + (to - from) i / (count - 1)`, exactly `to` at the end.
+    pub fn value(&self, i: usize) -> f64 {
+        if self.count <= 1 || i == 0 {
+            self.from
+        } else if i + 1 == self.count {
+            self.to
+        } else {
+            self.from + (self.to - self.from) * i as f64 / (self.count - 1) as f64
+        }
+    }
+
+    /// All values, in order.
+    pub fn values(&self) -> Vec<f64> {
+        (0..self.count).map(|i| self.value(i)).collect()
+    }
+
+    /// `NAME=FROM:TO:COUNT`, which [`parse`](Self::parse) reads back exactly.
+    pub fn spec(&self) -> String {
+        format!("{}={}:{}:{}", self.name, self.from, self.to, self.count)
+    }
+}
+
+impl std::fmt::Display for GridAxis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.spec())
+    }
+}
+
+/// Number of points of the grid `x × y`.
+pub fn grid_len(x: &GridAxis, y: &GridAxis) -> Result<usize, AxisError> {
+    x.count
+        .checked_mul(y.count)
+        .ok_or(AxisError::TooLarge(x.count, y.count))
+}
+
+/// Part `index` of `count` disjoint parts of a grid: the points whose index is `index` mod `count`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// Which part (`0 ≤ index < count`).
+    pub index: usize,
+    /// How many parts.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parse `k/n` (`0 ≤ k < n`).
+    pub fn parse(text: &str) -> Result<Self, MapError> {
+        let bad = || MapError::BadShard(text.to_string());
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
+        let index: usize = k.trim().parse().map_err(|_| bad())?;
+        let count: usize = n.trim().parse().map_err(|_| bad())?;
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    /// Whether grid point `i` belongs to this part.
+    pub fn contains(&self, i: usize) -> bool {
+        i % self.count == self.index
+    }
+}
+
+impl std::fmt::Display for Shard {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_values_hit_both_ends() {
+        let a = GridAxis::parse("W=0.2:9:45").unwrap();
+        assert_eq!(a.value(0), 0.2);
+        assert_eq!(a.value(44), 9.0);
+        assert_eq!(GridAxis::parse(&a.spec()).unwrap(), a);
+        let one = GridAxis::parse("Q0=70:80:1").unwrap();
+        assert_eq!(one.values(), vec![70.0]);
+    }
+}

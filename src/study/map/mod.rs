@@ -1,0 +1,55 @@
+//! Parameter maps (SPEC §9, the paper's Fig. 11): which motions exist at
+//! each point of a grid over two parameters.
+//!
+//! At every grid point the motion is simulated from two starts (rest, and a
+//! state above the stick boundary half a forcing period later) until it
+//! settles ([`attractor::find`]); the distinct results — periodic motions
+//! named by structure and period, or `NM` — are the point's motions, so
+//! coexisting motions (the flow barrier of SPEC §10) show up as a set.
+//!
+//! [`run_map`] computes a grid (or one shard of it, for a cluster job
+//! array) on all cores and appends each point's line to the output file as
+//! soon as it is known, so that a run killed at any moment resumes without
+//! losing or repeating a point; at the end the file is rewritten sorted by
+//! index. [`merge`] joins shard files into the file a single run would have
+//! written, byte for byte.
+//!
+//! # File format
+//!
+//! ```text
+//! # stickslip map model=paper x=W=3:5:6 y=Q0=50:80:3 base=m=5,d=0.1,... [shard=0/3]
+//! index,W,Q0,status,motions
+//! 0,3.0,50.0,"ok","P_{3_31 0_11 3_13 4_33}"
+//! 1,3.4,50.0,"ok","NM;P_{3_33 4_33}^2"
+//! ```
+//!
+//! Grid point `index = iy * nx + ix` lies at `x = x.value(ix)`,
+//! `y = y.value(iy)`. `status` is `ok` when every start settled, `invalid: …`
+//! for parameters the model rejects, and otherwise names the starts that did
+//! not settle (`start 2: unsettled`). `motions` are sorted and joined by `;`:
+//! a structure in the paper's notation with `^N` when its period is `N > 1`
+//! forcing periods, or `NM`. Numbers are printed in Rust's shortest
+//! round-trip form, so a parsed line prints back byte for byte. The shard
+//! appears in the header of a shard's file only: a complete map does not
+//! depend on how it was computed.
+
+mod classify;
+mod error;
+mod file;
+mod grid;
+mod run;
+
+pub use classify::{classify_point, motion_label};
+pub use error::{AxisError, MapError};
+pub use file::{MapFile, MapHeader, PointResult};
+pub use grid::{grid_len, GridAxis, Shard};
+pub use run::{merge, run_map, MapOptions, Summary};
+
+/// Forcing periods simulated at most from each start.
+pub const MAX_PERIODS: u32 = 600;
+
+/// The label of "no motion touches a boundary".
+pub const NO_MOTION: &str = "NM";
+
+/// The label of a permanent stick in a map.
+pub const STICK: &str = "stick";
