@@ -2,6 +2,7 @@
 //!
 //! * [`report`] — text, JSON and CSV of motions and simulations;
 //! * [`describe`] — a model's description (text and JSON);
+//! * [`sweep_table`] — a sweep as text or JSON; [`map_summary`] — what a map run did;
 //! * figures: [`plot`] (a motion's six panels), [`sweep_plot`], [`map_plot`],
 //!   [`trade_plot`].
 //!
@@ -9,7 +10,9 @@
 
 pub mod describe;
 pub mod map_plot;
+pub mod map_summary;
 pub mod plot;
 pub mod report;
 pub mod sweep_plot;
+pub mod sweep_table;
 pub mod trade_plot;

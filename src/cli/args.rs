@@ -1,0 +1,176 @@
+//! Arguments several subcommands share: `--set NAME=VALUE`, number lists,
+//! `--param NAME=from:to:count`, the model lookup, the `--plot` path check
+//! and the output options of `orbit` and `simulate`.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use stickslip::output::plot::Format;
+use stickslip::{models, Model, ModelVisitor, ParamSet};
+
+use super::error::CliError;
+
+/// Output options of `orbit` and `simulate`.
+#[derive(Args, Clone)]
+pub struct OutputArgs {
+    /// Print JSON (schema in the README, "Periodic motions").
+    #[arg(long)]
+    pub json: bool,
+    /// Draw the six panels of the motion into FILE (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// Write one period of the motion (or the last simulated forcing period
+    /// for NM) as CSV: `t,Wt,x,v,a,domain,F`.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+}
+
+/// The `--set NAME=VALUE` pairs, in the order given.
+pub struct Assignments(Vec<(String, f64)>);
+
+impl Assignments {
+    /// Parse `NAME=VALUE` items (`--set W=3.7,Q0=70` gives two).
+    pub fn parse(items: &[String]) -> Result<Self, CliError> {
+        items
+            .iter()
+            .map(|item| {
+                let (name, value) = item
+                    .split_once('=')
+                    .ok_or_else(|| CliError::Assignment { item: item.clone() })?;
+                let v: f64 = value
+                    .trim()
+                    .parse()
+                    .map_err(|_| CliError::AssignmentValue {
+                        item: item.clone(),
+                        value: value.to_string(),
+                    })?;
+                Ok((name.trim().to_string(), v))
+            })
+            .collect::<Result<_, _>>()
+            .map(Self)
+    }
+
+    /// The pairs.
+    pub fn pairs(&self) -> &[(String, f64)] {
+        &self.0
+    }
+
+    /// Model `M`'s parameters: its defaults with these applied, checked.
+    pub fn params<M: Model>(&self) -> Result<M::Params, CliError> {
+        let pairs: Vec<(&str, f64)> = self.0.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+        Ok(M::Params::from_pairs(M::INFO, &pairs)?)
+    }
+}
+
+/// The parameters the user set, for headings and figure titles:
+/// `W = 3.7, Q0 = 70`, or `default parameters`.
+impl fmt::Display for Assignments {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_empty() {
+            return f.write_str("default parameters");
+        }
+        let items: Vec<String> = self.0.iter().map(|(n, v)| format!("{n} = {v}")).collect();
+        f.write_str(&items.join(", "))
+    }
+}
+
+/// Parse `N` comma-separated finite numbers, `what` they are (`x,v,W t`).
+pub fn parse_numbers<const N: usize>(text: &str, what: &'static str) -> Result<[f64; N], CliError> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != N {
+        return Err(CliError::NumberCount {
+            text: text.to_string(),
+            what,
+            count: N,
+        });
+    }
+    let mut out = [0.0f64; N];
+    for (o, p) in out.iter_mut().zip(&parts) {
+        *o = p.parse().map_err(|_| CliError::NotANumber {
+            text: text.to_string(),
+            part: p.to_string(),
+            what,
+        })?;
+        if !o.is_finite() {
+            return Err(CliError::NotFinite {
+                text: text.to_string(),
+                part: p.to_string(),
+                what,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// A parameter and its grid, `NAME=from:to:count`.
+pub struct ParamRange {
+    /// The parameter.
+    pub name: String,
+    /// First value.
+    pub from: f64,
+    /// Last value.
+    pub to: f64,
+    /// Number of points.
+    pub count: usize,
+}
+
+impl ParamRange {
+    /// Parse `NAME=from:to:count` (checked further by the sweep).
+    pub fn parse(text: &str) -> Result<Self, CliError> {
+        let bad = || CliError::Range {
+            text: text.to_string(),
+        };
+        let (name, range) = text.split_once('=').ok_or_else(bad)?;
+        let parts: Vec<&str> = range.split(':').map(str::trim).collect();
+        let [from, to, count] = parts.as_slice() else {
+            return Err(bad());
+        };
+        Ok(Self {
+            name: name.trim().to_string(),
+            from: from.parse().map_err(|_| bad())?,
+            to: to.parse().map_err(|_| bad())?,
+            count: count.parse().map_err(|_| bad())?,
+        })
+    }
+}
+
+/// Run `visitor` with the compiled-in model `name` (`paper`, or `model::scene`).
+pub fn with_model<V, T>(name: &str, visitor: V) -> Result<T, CliError>
+where
+    V: ModelVisitor<Output = Result<T, CliError>>,
+{
+    models::visit(name, visitor).unwrap_or_else(|| {
+        Err(CliError::UnknownModel {
+            name: name.to_string(),
+        })
+    })
+}
+
+/// A `--plot` path we can write a figure to: a figure format by extension
+/// (`.svg`, `.png`), not a directory, in a directory that exists. Every
+/// subcommand that draws checks its path with this before any work.
+pub fn check_plot_path(path: Option<&Path>) -> Result<(), CliError> {
+    let Some(path) = path else {
+        return Ok(());
+    };
+    if Format::of(path).is_err() {
+        return Err(CliError::PlotFormat {
+            path: path.to_path_buf(),
+        });
+    }
+    if path.is_dir() {
+        return Err(CliError::PlotIsDirectory {
+            path: path.to_path_buf(),
+        });
+    }
+    match path.parent() {
+        Some(directory) if !directory.as_os_str().is_empty() && !directory.is_dir() => {
+            Err(CliError::PlotDirectory {
+                path: path.to_path_buf(),
+                directory: directory.to_path_buf(),
+            })
+        }
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,76 @@
+//! `stickslip map`: which motions exist at each point of a grid over two
+//! parameters; all cores, resumable, shardable.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use stickslip::output::map_plot::plot_map;
+use stickslip::output::map_summary;
+use stickslip::study::map::{run_map, GridAxis, MapOptions, Shard};
+use stickslip::{Model, ModelVisitor};
+
+use super::args::{check_plot_path, with_model, Assignments};
+use super::error::CliError;
+use super::outcome::Outcome;
+
+/// Options of `map`.
+#[derive(Args, Clone)]
+pub struct MapArgs {
+    /// Model name (`paper`), or `model::scene`.
+    #[arg(long, default_value = "paper")]
+    model: String,
+    /// Horizontal axis, `NAME=from:to:count` (e.g. `W=0.2:8:100`).
+    #[arg(long)]
+    x: String,
+    /// Vertical axis, `NAME=from:to:count` (e.g. `Q0=0:180:100`).
+    #[arg(long)]
+    y: String,
+    /// The other parameters, e.g. `--set d=0.1`.
+    #[arg(long, value_delimiter = ',')]
+    set: Vec<String>,
+    /// The map file, written point by point as they finish.
+    #[arg(long, value_name = "FILE", default_value = "map.csv")]
+    out: PathBuf,
+    /// Continue an interrupted run from its output file.
+    #[arg(long)]
+    resume: bool,
+    /// Compute only part `k` of `n` (`k/n`, k from 0), for a cluster job array.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Draw the map into FILE (.svg or .png) when it is complete.
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+}
+
+/// Compute the map (or resume it, or one shard), draw it, summarize it.
+pub fn run(args: MapArgs) -> Result<Outcome, CliError> {
+    check_plot_path(args.plot.as_deref())?;
+    let model = args.model.clone();
+    with_model(&model, MapCmd { args })
+}
+
+struct MapCmd {
+    args: MapArgs,
+}
+
+impl ModelVisitor for MapCmd {
+    type Output = Result<Outcome, CliError>;
+    fn visit<M: Model>(self) -> Self::Output {
+        let set = Assignments::parse(&self.args.set)?;
+        let x = GridAxis::parse_for::<M>(&self.args.x)?;
+        let y = GridAxis::parse_for::<M>(&self.args.y)?;
+        let base = set.params::<M>()?;
+        let shard = self.args.shard.as_deref().map(Shard::parse).transpose()?;
+        let opts = MapOptions {
+            resume: self.args.resume,
+            shard,
+            progress: true,
+            max_points: None,
+        };
+        let summary = run_map::<M>(&base, &x, &y, &self.args.out, &opts)?;
+        if let Some(plot) = &self.args.plot {
+            plot_map(&self.args.out, plot)?;
+        }
+        Ok(Outcome::ok(map_summary::text(&summary, &self.args.out)))
+    }
+}

@@ -1,0 +1,81 @@
+//! The command line: the parser, one module per subcommand (its arguments
+//! and what it does), the arguments they share, their errors and output.
+
+mod args;
+mod check;
+mod describe;
+mod error;
+mod map;
+mod merge;
+mod models;
+mod orbit;
+mod outcome;
+mod simulate;
+mod sweep;
+mod trade;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use error::CliError;
+
+/// Exact periodic motions of friction oscillators, from model files.
+#[derive(Parser)]
+#[command(name = "stickslip", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Check model files as the build does (parse, check, generate), without
+    /// compiling anything: each error as `error:`, `--> FILE:LINE:COL`, the
+    /// source line and a caret, on stderr. Exit status 1 on any error.
+    Check(check::CheckArgs),
+    /// List the compiled-in models and their scenes.
+    Models,
+    /// Print a model's domains, boundaries and generated mappings.
+    Describe(describe::DescribeArgs),
+    /// Solve a given mapping structure for its periodic motion (Newton),
+    /// check it (admissibility) and give its stability.
+    Orbit(orbit::OrbitArgs),
+    /// Simulate from a start state until the motion settles; name and refine
+    /// the periodic motion, or certify that none touches a boundary (NM).
+    Simulate(simulate::SimulateArgs),
+    /// Follow periodic motions along one parameter; locate every transition
+    /// (grazing, stick onset and vanishing, passable onset, |λ| = 1) and what
+    /// lives beyond it; report coexisting motions.
+    Sweep(sweep::SweepArgs),
+    /// Measure the speed/accuracy trade of a smooth-law model: its N-piece
+    /// predictions and the integrator at several tolerances against the law
+    /// integrated tightly (switching points, amplitude, time).
+    Trade(trade::TradeArgs),
+    /// Which motions exist at each point of a grid over two parameters (the
+    /// paper's Fig. 11); all cores, resumable, shardable for a cluster.
+    Map(map::MapArgs),
+    /// Join the outputs of `map --shard k/n` into one map (and figure),
+    /// identical to a single run.
+    Merge(merge::MergeArgs),
+}
+
+impl Cli {
+    /// Run the subcommand and print what it says; the exit status. An
+    /// error is returned unprinted.
+    pub fn run(self) -> Result<ExitCode, CliError> {
+        let outcome = match self.command {
+            // Streams its diagnostics, has its own exit status.
+            Command::Check(args) => return check::run(&args),
+            Command::Models => models::run(),
+            Command::Describe(args) => describe::run(args)?,
+            Command::Orbit(args) => orbit::run(args)?,
+            Command::Simulate(args) => simulate::run(args)?,
+            Command::Sweep(args) => sweep::run(args)?,
+            Command::Trade(args) => trade::run(args)?,
+            Command::Map(args) => map::run(args)?,
+            Command::Merge(args) => merge::run(args)?,
+        };
+        Ok(outcome.print())
+    }
+}

@@ -1,0 +1,69 @@
+//! `stickslip sweep`: periodic motions along one parameter, their
+//! transitions, coexisting motions.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use stickslip::output::{sweep_plot, sweep_table};
+use stickslip::study::sweep::sweep;
+use stickslip::{Model, ModelVisitor};
+
+use super::args::{check_plot_path, with_model, Assignments, ParamRange};
+use super::error::CliError;
+use super::outcome::Outcome;
+
+/// Arguments of `sweep`.
+#[derive(Args, Clone)]
+pub struct SweepArgs {
+    /// Model name (`paper`), or `model::scene`.
+    #[arg(long, default_value = "paper")]
+    model: String,
+    /// The swept parameter and its grid, `NAME=from:to:count` (e.g. `W=0.2:9:200`).
+    #[arg(long)]
+    param: String,
+    /// The other parameters, e.g. `--set Q0=70`.
+    #[arg(long, value_delimiter = ',')]
+    set: Vec<String>,
+    /// Print JSON (schema in the README, "Bifurcations and maps").
+    #[arg(long)]
+    json: bool,
+    /// Draw the bifurcation diagram into FILE (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+}
+
+/// The sweep as text or JSON, and its figure.
+pub fn run(args: SweepArgs) -> Result<Outcome, CliError> {
+    check_plot_path(args.plot.as_deref())?;
+    let model = args.model.clone();
+    with_model(&model, SweepCmd { args })
+}
+
+struct SweepCmd {
+    args: SweepArgs,
+}
+
+impl ModelVisitor for SweepCmd {
+    type Output = Result<Outcome, CliError>;
+    fn visit<M: Model>(self) -> Self::Output {
+        let set = Assignments::parse(&self.args.set)?;
+        let ParamRange {
+            name,
+            from,
+            to,
+            count,
+        } = ParamRange::parse(&self.args.param)?;
+        let base = set.params::<M>()?;
+        let sw = sweep::<M>(base, &name, from, to, count, Default::default())?;
+        if let Some(path) = &self.args.plot {
+            let title = format!("{} sweep of {name} ({set})", M::INFO.name);
+            sweep_plot::plot_sweep(&sw, &title, path).map_err(CliError::Figure)?;
+        }
+        let stdout = if self.args.json {
+            sweep_table::json(&sw)?
+        } else {
+            sweep_table::text(&sw, from, to, count, &set.to_string())
+        };
+        Ok(Outcome::ok(stdout))
+    }
+}

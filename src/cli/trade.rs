@@ -1,0 +1,63 @@
+//! `stickslip trade`: the speed/accuracy trade of a smooth-law model, its
+//! N-piece predictions and the integrator against a tight reference.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use stickslip::models;
+use stickslip::output::trade_plot;
+use stickslip::study::trade::Measure;
+
+use super::args::{check_plot_path, Assignments};
+use super::error::CliError;
+use super::outcome::Outcome;
+
+/// Arguments of `trade`.
+#[derive(Args)]
+pub struct TradeArgs {
+    /// A model with a smooth `law` (e.g. `stribeck`).
+    #[arg(long, default_value = "stribeck")]
+    model: String,
+    /// Parameter values (those free in the piecewise scenes), e.g. `--set W=1.5,Q0=6`.
+    #[arg(long, value_delimiter = ',')]
+    set: Vec<String>,
+    /// Piece counts (each needs a scene `plN` in the model file).
+    #[arg(long, value_delimiter = ',', default_value = "2,4,8,16,32,64")]
+    pieces: Vec<u32>,
+    /// Integrator tolerances to time against the reference.
+    #[arg(long, value_delimiter = ',', default_value = "1e-4,1e-6,1e-8,1e-10")]
+    tol: Vec<f64>,
+    /// The reference integration's tolerance.
+    #[arg(long, default_value_t = 1e-12)]
+    reference_tol: f64,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Draw error against time into FILE (.svg or .png).
+    #[arg(long, value_name = "FILE")]
+    plot: Option<PathBuf>,
+}
+
+/// Measure the trade; a table or JSON, and its figure.
+pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
+    check_plot_path(args.plot.as_deref())?;
+    let set = Assignments::parse(&args.set)?;
+    let measure = Measure {
+        set: set.pairs(),
+        pieces: &args.pieces,
+        tols: &args.tol,
+        reference_tol: args.reference_tol,
+    };
+    let trade =
+        models::visit_smooth(&args.model, measure).ok_or_else(|| CliError::NotSmooth {
+            name: args.model.clone(),
+        })??;
+    if let Some(path) = &args.plot {
+        trade_plot::plot_trade(&trade, path).map_err(CliError::Figure)?;
+    }
+    Ok(Outcome::ok(if args.json {
+        serde_json::to_string_pretty(&trade)?
+    } else {
+        trade_plot::table(&trade)
+    }))
+}
