@@ -11,7 +11,8 @@ use stickslip::orbit::motion::{self, OrbitError};
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::output::describe;
-use stickslip::output::report::{History, Report};
+use stickslip::output::history::History;
+use stickslip::output::report::Report;
 use stickslip::{models, MappingKind, Model, ModelVisitor, ParamSet};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -179,7 +180,7 @@ struct MapCmd {
 impl ModelVisitor for MapCmd {
     type Output = Result<Outcome, String>;
     fn visit<M: Model>(self) -> Self::Output {
-        use stickslip::output::map_plot::plot_map;
+        use stickslip::output::figure::map::plot_map;
         use stickslip::study::map::{run_map, GridAxis, MapOptions, Shard};
         let set = parse_assignments(&self.args.set)?;
         let x = GridAxis::parse_for::<M>(&self.args.x).map_err(|e| e.to_string())?;
@@ -435,7 +436,7 @@ fn finish(
                 outcome.notes.push(format!("wrote {}", path.display()));
             }
             if let Some(path) = &output.plot {
-                stickslip::output::plot::plot(&history, &title, path)?;
+                stickslip::output::figure::orbit::plot(&history, &title, path)?;
                 outcome.notes.push(format!("wrote {}", path.display()));
             }
         } else {
@@ -642,7 +643,7 @@ fn run(cli: Cli) -> Result<Outcome, String> {
     // A figure format we cannot write is an error before any work.
     if let Command::Orbit { output, .. } | Command::Simulate { output, .. } = &cli.command {
         if let Some(path) = &output.plot {
-            stickslip::output::plot::Format::of(path)?;
+            stickslip::output::figure::Format::of(path)?;
         }
     }
     match cli.command {
@@ -719,18 +720,18 @@ fn run(cli: Cli) -> Result<Outcome, String> {
         }
         Command::Map(args) => {
             if let Some(path) = &args.plot {
-                stickslip::output::plot::Format::of(path)?;
+                stickslip::output::figure::Format::of(path)?;
             }
             let model = args.model.clone();
             models::visit(&model, MapCmd { args }).unwrap_or_else(|| Err(unknown_model(&model)))
         }
         Command::Merge { inputs, out, plot } => {
             if let Some(path) = &plot {
-                stickslip::output::plot::Format::of(path)?;
+                stickslip::output::figure::Format::of(path)?;
             }
             let summary = stickslip::study::map::merge(&inputs, &out).map_err(|e| e.to_string())?;
             if let Some(plot) = &plot {
-                stickslip::output::map_plot::plot_map(&out, plot).map_err(|e| e.to_string())?;
+                stickslip::output::figure::map::plot_map(&out, plot).map_err(|e| e.to_string())?;
             }
             Ok(Outcome::ok(summary_text(&summary, &out)))
         }
@@ -744,7 +745,7 @@ fn run(cli: Cli) -> Result<Outcome, String> {
             plot,
         } => {
             if let Some(path) = &plot {
-                stickslip::output::plot::Format::of(path)?;
+                stickslip::output::figure::Format::of(path)?;
             }
             let set = parse_assignments(&set)?;
             let measure = stickslip::study::trade::Measure {
@@ -763,19 +764,19 @@ fn run(cli: Cli) -> Result<Outcome, String> {
                 })
                 .map_err(|e| e.to_string())?;
             if let Some(path) = &plot {
-                stickslip::output::trade_plot::plot_trade(&trade, path)?;
+                stickslip::output::figure::trade::plot_trade(&trade, path)?;
             }
             if json {
                 Ok(Outcome::ok(
                     serde_json::to_string_pretty(&trade).map_err(|e| e.to_string())?,
                 ))
             } else {
-                Ok(Outcome::ok(stickslip::output::trade_plot::table(&trade)))
+                Ok(Outcome::ok(stickslip::output::text::trade_table(&trade)))
             }
         }
         Command::Sweep(args) => {
             if let Some(path) = &args.plot {
-                stickslip::output::plot::Format::of(path)?;
+                stickslip::output::figure::Format::of(path)?;
             }
             let model = args.model.clone();
             models::visit(&model, SweepCmd { args }).unwrap_or_else(|| Err(unknown_model(&model)))
@@ -812,7 +813,7 @@ impl ModelVisitor for SweepCmd {
                 .map_err(|e| e.to_string())?;
         if let Some(path) = &self.args.plot {
             let title = format!("{} sweep of {name} ({})", M::INFO.name, set_text(&set));
-            stickslip::output::sweep_plot::plot_sweep(&sw, &title, path)?;
+            stickslip::output::figure::sweep::plot_sweep(&sw, &title, path)?;
         }
         let stdout = if self.args.json {
             let points: Vec<serde_json::Value> = sw
