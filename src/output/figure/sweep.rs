@@ -86,8 +86,9 @@ pub struct Tag {
     pub numbers: (usize, usize),
     /// The pixel column of the first one's line.
     pub line: i32,
-    /// The tag's box: `y` counts rows upwards from the panel's top edge
-    /// (row `r` spans `-(r + 1) h .. -r h` for the row height `h`).
+    /// The tag's box. From [`tags`], `y` counts rows upwards from the
+    /// panel's top edge (row `r` spans `-(r + 1) h .. -r h` for the row
+    /// height `h`); from [`SweepFigure::placed`], pixels of the image.
     pub rect: Rect,
 }
 
@@ -233,7 +234,32 @@ impl Figure for SweepFigure<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), DrawError> {
+        self.draw_all(root).map(|_| ())
+    }
+}
+
+impl SweepFigure<'_> {
+    /// The tags over the upper panels as drawn, in pixels of the image
+    /// (one list per panel), and the boxes of the key's texts and marks.
+    pub fn placed(&self) -> Result<(Vec<Vec<Tag>>, Vec<Rect>), DrawError> {
+        let mut svg = String::new();
+        let tags = {
+            let root = SVGBackend::with_string(&mut svg, self.size()).into_drawing_area();
+            self.draw_all(&root)?
+        };
+        let [s, k] = self.key_origins();
+        let structures = self.structures.1.boxes().map(|r| r.shifted(s.0, s.1));
+        let key = self.key.1.boxes().map(|r| r.shifted(k.0, k.1));
+        Ok((tags, structures.chain(key).collect()))
+    }
+
+    /// Draw the figure; the tags over the upper panels, in pixels of `root`.
+    fn draw_all<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<Vec<Vec<Tag>>, DrawError> {
         let sweep = self.sweep;
+        let mut placed = Vec::new();
         root.fill(&WHITE)?;
         let (panels, _) = root.split_vertically(PANELS_HEIGHT);
         let body = panels.titled(self.title, (FAMILY, TITLE_SIZE).into_font())?;
@@ -359,6 +385,9 @@ impl Figure for SweepFigure<'_> {
                         .pos(Pos::new(HPos::Center, VPos::Center)),
                 ))?;
             }
+            if panel < 2 {
+                placed.push(tags);
+            }
         }
         let [s, k] = self.key_origins();
         if !self.names.is_empty() {
@@ -367,6 +396,6 @@ impl Figure for SweepFigure<'_> {
         if !self.order.is_empty() {
             self.key.0.draw(&self.key.1, root, k)?;
         }
-        Ok(())
+        Ok(placed)
     }
 }
