@@ -386,7 +386,14 @@ impl SweepFigure<'_> {
                 ))?;
             }
             if panel < 2 {
-                placed.push(tags);
+                placed.push(
+                    tags.into_iter()
+                        .map(|t| Tag {
+                            rect: t.rect.shifted(0, top),
+                            ..t
+                        })
+                        .collect(),
+                );
             }
         }
         let [s, k] = self.key_origins();
