@@ -6,7 +6,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use stickslip::output::plot::Format;
+use stickslip::output::figure::Format;
 use stickslip::{models, Model, ModelVisitor, ParamSet};
 
 use super::error::CliError;

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use stickslip::output::map_plot::plot_map;
+use stickslip::output::figure::map::plot_map;
 use stickslip::output::map_summary;
 use stickslip::study::map::merge;
 

@@ -12,7 +12,8 @@ use stickslip::orbit::attractor;
 use stickslip::orbit::motion;
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
-use stickslip::output::report::{History, Report};
+use stickslip::output::history::History;
+use stickslip::output::report::Report;
 use stickslip::{MappingKind, Model, ModelVisitor};
 
 use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs};

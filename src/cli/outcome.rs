@@ -3,8 +3,9 @@
 
 use std::process::ExitCode;
 
-use stickslip::output::plot;
-use stickslip::output::report::{History, Report};
+use stickslip::output::figure::orbit;
+use stickslip::output::history::History;
+use stickslip::output::report::Report;
 
 use super::args::OutputArgs;
 use super::error::CliError;
@@ -78,7 +79,7 @@ impl Outcome {
                     self.notes.push(format!("wrote {}", path.display()));
                 }
                 if let Some(path) = &output.plot {
-                    plot::plot(&history, &title, path).map_err(CliError::Figure)?;
+                    orbit::plot(&history, &title, path).map_err(CliError::Figure)?;
                     self.notes.push(format!("wrote {}", path.display()));
                 }
             } else {

@@ -8,7 +8,8 @@ use clap::Args;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::motion::OrbitError;
-use stickslip::output::report::{History, Report};
+use stickslip::output::history::History;
+use stickslip::output::report::Report;
 use stickslip::{Model, ModelVisitor};
 
 use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs};

@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use stickslip::output::{sweep_plot, sweep_table};
+use stickslip::output::figure::sweep::plot_sweep;
+use stickslip::output::sweep_table;
 use stickslip::study::sweep::sweep;
 use stickslip::{Model, ModelVisitor};
 
@@ -57,7 +58,7 @@ impl ModelVisitor for SweepCmd {
         let sw = sweep::<M>(base, &name, from, to, count, Default::default())?;
         if let Some(path) = &self.args.plot {
             let title = format!("{} sweep of {name} ({set})", M::INFO.name);
-            sweep_plot::plot_sweep(&sw, &title, path).map_err(CliError::Figure)?;
+            plot_sweep(&sw, &title, path).map_err(CliError::Figure)?;
         }
         let stdout = if self.args.json {
             sweep_table::json(&sw)?

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 use stickslip::models;
-use stickslip::output::trade_plot;
+use stickslip::output::figure::trade::plot_trade;
+use stickslip::output::text::trade_table;
 use stickslip::study::trade::Measure;
 
 use super::args::{check_plot_path, Assignments};
@@ -53,11 +54,11 @@ pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
             name: args.model.clone(),
         })??;
     if let Some(path) = &args.plot {
-        trade_plot::plot_trade(&trade, path).map_err(CliError::Figure)?;
+        plot_trade(&trade, path).map_err(CliError::Figure)?;
     }
     Ok(Outcome::ok(if args.json {
         serde_json::to_string_pretty(&trade)?
     } else {
-        trade_plot::table(&trade)
+        trade_table(&trade)
     }))
 }

@@ -1,18 +1,19 @@
 //! The output layer: what a study looks like to a reader.
 //!
-//! * [`report`] — text, JSON and CSV of motions and simulations;
+//! * [`report`] — the report of `orbit` and `simulate`, with its JSON schema;
+//! * [`text`] — the text forms: a report, the trade's table;
+//! * [`history`] — a motion's sampled time history, and its CSV;
 //! * [`describe`] — a model's description (text and JSON);
 //! * [`sweep_table`] — a sweep as text or JSON; [`map_summary`] — what a map run did;
-//! * figures: [`plot`] (a motion's six panels), [`sweep_plot`], [`map_plot`],
-//!   [`trade_plot`].
+//! * [`figure`] — the figures (SVG or PNG): a motion's six panels, a sweep,
+//!   a map, the trade.
 //!
 //! Depends on every layer below; nothing below depends on it.
 
 pub mod describe;
-pub mod map_plot;
+pub mod figure;
+pub mod history;
 pub mod map_summary;
-pub mod plot;
 pub mod report;
-pub mod sweep_plot;
 pub mod sweep_table;
-pub mod trade_plot;
+pub mod text;

@@ -1,0 +1,236 @@
+//! The text forms of what the commands find: a report (what `orbit` and
+//! `simulate` print without `--json`) and the trade's table.
+
+use std::fmt;
+
+use crate::orbit::stability::{Classification, Stability};
+use crate::output::report::{MotionReport, ParamValues, Report};
+use crate::study::trade::Trade;
+
+impl fmt::Display for ParamValues {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, (name, value)) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "{name} = {value}")?;
+        }
+        Ok(())
+    }
+}
+
+fn classification_text(s: &Stability) -> &'static str {
+    match s.classification {
+        Classification::Stable => "stable",
+        Classification::Unstable => "unstable",
+        Classification::NearSaddleNode => "near a saddle-node bifurcation (an eigenvalue near +1)",
+        Classification::NearPeriodDoubling => {
+            "near a period-doubling bifurcation (an eigenvalue near -1)"
+        }
+        Classification::NearNeimark => "near a Neimark bifurcation (a complex pair near |λ| = 1)",
+    }
+}
+
+/// 12 decimals, or scientific notation for tiny nonzero values (round-off).
+fn number(x: f64) -> String {
+    if x == 0.0 || x.abs() >= 1e-6 {
+        format!("{x:.12}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+fn write_motion(f: &mut fmt::Formatter<'_>, r: &MotionReport) -> fmt::Result {
+    writeln!(
+        f,
+        "{}: {}, period N = {} (model {})",
+        if r.admissible {
+            "periodic motion"
+        } else {
+            "NOT A MOTION (inadmissible Newton solution)"
+        },
+        r.structure,
+        r.periods,
+        r.model
+    )?;
+    writeln!(f, "parameters: {}", r.params)?;
+    writeln!(
+        f,
+        "Newton: converged in {} iteration{}, residual {}",
+        r.newton.iterations,
+        if r.newton.iterations == 1 { "" } else { "s" },
+        r.newton
+            .residual
+            .map_or_else(|| "unknown".to_string(), |x| format!("{x:.1e}"))
+    )?;
+    writeln!(f)?;
+    writeln!(
+        f,
+        "{:>3}  {:<8} {:<9} {:>17} {:>17} {:>18} {:>8}",
+        "k", "mapping", "boundary", "W t", "W t mod 2π", "x", "v"
+    )?;
+    for p in &r.points {
+        writeln!(
+            f,
+            "{:>3}  {:<8} {:<9} {:>17.12} {:>17.12} {:>18.12} {:>8}",
+            p.k, p.mapping, p.boundary, p.phase, p.phase_mod_2pi, p.x, p.v
+        )?;
+    }
+    writeln!(f, "(point k is the start of the k-th mapping applied)")?;
+    writeln!(f)?;
+    match &r.stability {
+        Some(s) => {
+            writeln!(f, "eigenvalues of DP (in (W t, x)):")?;
+            for (i, e) in s.eigenvalues.iter().enumerate() {
+                let value = if e[1] == 0.0 {
+                    number(e[0])
+                } else {
+                    let sign = if e[1] < 0.0 { '-' } else { '+' };
+                    format!("{} {sign} {}i", number(e[0]), number(e[1].abs()))
+                };
+                writeln!(
+                    f,
+                    "  λ{} = {value:<36} |λ{}| = {}",
+                    i + 1,
+                    i + 1,
+                    number(e[0].hypot(e[1]))
+                )?;
+            }
+            write!(
+                f,
+                "stability: {} (largest |λ| = {:.6})",
+                classification_text(s),
+                s.largest_modulus
+            )?;
+            if s.has_zero_eigenvalue {
+                write!(f, "; one eigenvalue is 0 to round-off (stick)")?;
+            }
+            writeln!(f)?;
+        }
+        None => writeln!(
+            f,
+            "eigenvalues: none (DP does not exist: an arrival is tangent to its boundary)"
+        )?,
+    }
+    if r.violations.is_empty() {
+        writeln!(
+            f,
+            "admissible: yes (every segment, crossing and force criterion checked)"
+        )
+    } else {
+        writeln!(f, "admissible: NO, violated conditions:")?;
+        for v in &r.violations {
+            let mapping = r.points.get(v.segment).map_or("?", |p| p.mapping);
+            writeln!(
+                f,
+                "  mapping {} ({mapping}): {} (margin {:.3e})",
+                v.segment, v.condition, v.margin
+            )?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Report {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Report::Periodic(r) | Report::Inadmissible(r) => write_motion(f, r),
+            Report::NeutralFamily(r) => {
+                write_motion(f, r)?;
+                writeln!(
+                    f,
+                    "neutral family: DP has the eigenvalue 1 (to round-off): this motion is one \
+                     of a continuum of neutrally stable periodic motions; other starts settle on \
+                     other members (Csernák, Stépán & Shaw 2007: the undamped Coulomb oscillator \
+                     at W = sqrt(c) / (2 n))"
+                )
+            }
+            Report::NoMotion(r) => writeln!(
+                f,
+                "NM (no motion touches a boundary; model {}): the steady motion stays in domain {} \
+                 with {:.6} <= v <= {:.6} (certified by a bound on the transient at W t = {:.6})",
+                r.model, r.domain, r.min_v, r.max_v, r.certified_at
+            ),
+            Report::Stick(r) => writeln!(
+                f,
+                "permanent stick (model {}): the mass sticks from W t = {:.6} on at x = {:.12}, \
+                 v = {}; the non-friction force never exceeds {:.6} <= as = {:.6}",
+                r.model, r.since, r.x, r.v, r.max_force, r.static_bound
+            ),
+            Report::Autonomous(r) => writeln!(
+                f,
+                "autonomous stick-slip cycle (no forcing; model {}): {}, period T = {:.12} \
+                 (stick {:.12}, slip {:.12}); the stick begins at x = {:.12}, v = {} \
+                 (W t = {:.6}; W only sets the phase unit)",
+                r.model, r.structure, r.period, r.stick, r.slip, r.x, r.v, r.onset
+            ),
+            Report::NotConverged(r) => {
+                writeln!(
+                    f,
+                    "Newton did not converge{}: {}",
+                    if r.structure.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" for {}", r.structure)
+                    },
+                    r.reason
+                )?;
+                writeln!(
+                    f,
+                    "iterations: {}, residual: {}",
+                    r.newton.iterations,
+                    r.newton
+                        .residual
+                        .map_or_else(|| "unknown".to_string(), |x| format!("{x:.3e}"))
+                )
+            }
+        }
+    }
+}
+
+/// A text table of the trade.
+pub fn trade_table(t: &Trade) -> String {
+    let mut out = format!(
+        "speed/accuracy trade of `{}` (reference: the law integrated at rtol {:e}, {} belt events per cycle, amplitude {:.9})\n\n",
+        t.model,
+        t.reference_tol,
+        t.reference.belt_events.len(),
+        t.reference.amplitude
+    );
+    out.push_str(&format!(
+        "{:<11} {:>7} {:>8} {:>12} {:>12} {:>12} {:>12} {:>12}  structure / note\n",
+        "method", "pieces", "tol", "time [ms]", "err W t", "err x", "err ampl.", "error"
+    ));
+    for r in &t.rows {
+        let pieces = r.pieces.map_or("-".into(), |n| n.to_string());
+        let tol = r.tol.map_or("-".into(), |t| format!("{t:e}"));
+        let what = r.note.clone().unwrap_or_else(|| {
+            if r.structure.len() > 60 {
+                format!("{}… ({} chars)", &r.structure[..57], r.structure.len())
+            } else {
+                r.structure.clone()
+            }
+        });
+        out.push_str(&format!(
+            "{:<11} {:>7} {:>8} {:>12.4} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e}  {}\n",
+            r.method,
+            pieces,
+            tol,
+            r.seconds * 1e3,
+            r.error_phase,
+            r.error_x,
+            r.error_amplitude,
+            r.error,
+            what
+        ));
+    }
+    match t.order {
+        Some(o) => out.push_str(&format!(
+            "\nobserved convergence order in N (N >= 8): {o:.3} (interpolating a smooth law: 2)\n"
+        )),
+        None => {
+            out.push_str("\nobserved convergence order in N: not enough comparable piece counts\n")
+        }
+    }
+    out
+}
