@@ -178,7 +178,13 @@ struct MapCmd {
 
 impl ModelVisitor for MapCmd {
     type Output = Result<Outcome, String>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl MapCmd {
+    fn run<M: Model>(self) -> Result<Outcome, String> {
         use stickslip::output::map_plot::plot_map;
         use stickslip::study::map::{run_map, GridAxis, MapOptions, Shard};
         let set = parse_assignments(&self.args.set)?;
@@ -470,7 +476,13 @@ struct Orbit {
 
 impl ModelVisitor for Orbit {
     type Output = Result<Outcome, String>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl Orbit {
+    fn run<M: Model>(self) -> Result<Outcome, String> {
         let info = M::INFO;
         let p = params::<M>(&self.set)?;
         let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
@@ -526,7 +538,13 @@ struct Simulate {
 
 impl ModelVisitor for Simulate {
     type Output = Result<Outcome, String>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl Simulate {
+    fn run<M: Model>(self) -> Result<Outcome, String> {
         let info = M::INFO;
         let p = params::<M>(&self.set)?;
         let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
@@ -626,7 +644,13 @@ struct Describe {
 
 impl ModelVisitor for Describe {
     type Output = Result<String, String>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl Describe {
+    fn run<M: Model>(self) -> Result<String, String> {
         let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
         let p = M::Params::from_pairs(M::INFO, &pairs).map_err(|e| e.to_string())?;
         let d = describe::describe::<M>(&p);
@@ -653,7 +677,7 @@ fn run(cli: Cli) -> Result<Outcome, String> {
         )),
         Command::Models => {
             let mut out = String::new();
-            for info in models::ALL {
+            for info in models::ALL.iter().filter_map(models::Entry::piecewise) {
                 let free: Vec<&str> = info.free.iter().map(|&i| info.params[i].name).collect();
                 let first_doc = info.doc.lines().next().unwrap_or("");
                 out.push_str(&format!(
@@ -753,9 +777,9 @@ fn run(cli: Cli) -> Result<Outcome, String> {
                 tols: &tol,
                 reference_tol,
             };
-            let trade = models::visit_smooth(&model, measure)
+            let trade = models::visit(&model, measure)
                 .unwrap_or_else(|| {
-                    let names: Vec<&str> = models::SMOOTH.iter().map(|i| i.name).collect();
+                    let names: Vec<&str> = models::ALL.iter().filter_map(models::Entry::smooth).map(|i| i.name).collect();
                     Err(stickslip::study::trade::TradeError::Input(format!(
                         "`{model}` is not a model with a smooth law; compiled-in: {}",
                         names.join(", ")
@@ -803,7 +827,13 @@ struct SweepCmd {
 
 impl ModelVisitor for SweepCmd {
     type Output = Result<Outcome, String>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl SweepCmd {
+    fn run<M: Model>(self) -> Result<Outcome, String> {
         let set = parse_assignments(&self.args.set)?;
         let (name, from, to, count) = parse_range(&self.args.param)?;
         let base = params::<M>(&set)?;
@@ -890,7 +920,7 @@ impl ModelVisitor for SweepCmd {
 }
 
 fn unknown_model(model: &str) -> String {
-    let names: Vec<&str> = models::ALL.iter().map(|i| i.name).collect();
+    let names: Vec<&str> = models::ALL.iter().filter_map(models::Entry::piecewise).map(|i| i.name).collect();
     format!("unknown model `{model}`; compiled-in: {}", names.join(", "))
 }
 
