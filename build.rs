@@ -30,7 +30,10 @@ fn main() {
     let mut generated = Vec::new();
     for file in &files {
         println!("cargo:rerun-if-changed={}", file.display());
-        let origin = format!("models/{}", file.file_name().expect("file").to_string_lossy());
+        let origin = format!(
+            "models/{}",
+            file.file_name().expect("file").to_string_lossy()
+        );
         // The one entry point of build.rs, `model!(file = ...)` and
         // `stickslip check`: the same file gets the same report from all three.
         match stickslip_codegen::check_file(file, &origin) {
@@ -45,7 +48,10 @@ fn main() {
         }
     }
     if failed {
-        eprintln!("stickslip: invalid model file(s) in {}", models_dir.display());
+        eprintln!(
+            "stickslip: invalid model file(s) in {}",
+            models_dir.display()
+        );
         std::process::exit(1);
     }
     write_if_changed(&out.join("models.rs"), &registry::catalogue(&generated));

@@ -779,7 +779,11 @@ fn run(cli: Cli) -> Result<Outcome, String> {
             };
             let trade = models::visit(&model, measure)
                 .unwrap_or_else(|| {
-                    let names: Vec<&str> = models::ALL.iter().filter_map(models::Entry::smooth).map(|i| i.name).collect();
+                    let names: Vec<&str> = models::ALL
+                        .iter()
+                        .filter_map(models::Entry::smooth)
+                        .map(|i| i.name)
+                        .collect();
                     Err(stickslip::study::trade::TradeError::Input(format!(
                         "`{model}` is not a model with a smooth law; compiled-in: {}",
                         names.join(", ")
@@ -920,7 +924,11 @@ impl SweepCmd {
 }
 
 fn unknown_model(model: &str) -> String {
-    let names: Vec<&str> = models::ALL.iter().filter_map(models::Entry::piecewise).map(|i| i.name).collect();
+    let names: Vec<&str> = models::ALL
+        .iter()
+        .filter_map(models::Entry::piecewise)
+        .map(|i| i.name)
+        .collect();
     format!("unknown model `{model}`; compiled-in: {}", names.join(", "))
 }
 

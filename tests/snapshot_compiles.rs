@@ -39,7 +39,12 @@ fn agree<A: Model, B: Model>(p: &A::Params, q: &B::Params) {
             let a = A::mapping(p, idx, x0, phi0, x1, phi1);
             let b = B::mapping(q, idx, x0, phi0, x1, phi1);
             // Debug prints every digit, and NaN equal to NaN.
-            assert_eq!(format!("{a:?}"), format!("{b:?}"), "{} mapping {idx}", A::INFO.name);
+            assert_eq!(
+                format!("{a:?}"),
+                format!("{b:?}"),
+                "{} mapping {idx}",
+                A::INFO.name
+            );
         }
     }
 }

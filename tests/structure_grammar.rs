@@ -89,7 +89,10 @@ fn checker_and_runtime_accept_and_reject_the_same_structures() {
         }
     }
     // The list exercises both answers, so agreeing is not trivial.
-    assert!(accepted >= 8 && rejected >= 15, "{accepted} accepted, {rejected} rejected");
+    assert!(
+        accepted >= 8 && rejected >= 15,
+        "{accepted} accepted, {rejected} rejected"
+    );
 }
 
 #[test]

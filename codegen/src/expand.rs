@@ -81,7 +81,11 @@ pub fn model(input: TokenStream) -> TokenStream {
         }
     };
     // Make the compiler rebuild when the model file changes.
-    let track = tracked.map(|p| quote!(const _: &[u8] = include_bytes!(#p);));
+    let track = tracked.map(|p| {
+        quote!(
+            const _: &[u8] = include_bytes!(#p);
+        )
+    });
     registry::module(&generated, quote!(#track #body))
 }
 

@@ -151,7 +151,13 @@ mod tests {
     #[test]
     fn the_module_wrapper_carries_doc_lints_and_name() {
         let g = generated("coulomb.ssm");
-        let text = module(&g, quote!(pub struct X;)).to_string();
+        let text = module(
+            &g,
+            quote!(
+                pub struct X;
+            ),
+        )
+        .to_string();
         let doc = format!(" {}", g.doc.lines().next().expect("a doc line"));
         let lints = module_lints();
         let want = quote!(#[doc = #doc] #[allow(#lints)] pub mod coulomb { pub struct X; });
@@ -179,11 +185,18 @@ mod tests {
             assert_eq!(text.matches(&arm).count(), 1, "{arm}\n{text}");
         }
         // One entry per instance, the smooth law among them, in file order.
-        assert_eq!(text.matches("crate::model::registry::Entry::").count(), kinds.len());
+        assert_eq!(
+            text.matches("crate::model::registry::Entry::").count(),
+            kinds.len()
+        );
         assert_eq!(kinds[..2], ["Piecewise", "Smooth"]);
         for f in &files {
             let path = format!("\"/models/{}.rs\"", f.name);
-            assert_eq!(text.matches(&path).count(), 2, "include! and include_str!: {text}");
+            assert_eq!(
+                text.matches(&path).count(),
+                2,
+                "include! and include_str!: {text}"
+            );
         }
     }
 }

@@ -48,8 +48,7 @@ pub mod registry;
 pub mod smooth;
 
 pub use info::{
-    Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo,
-    Side,
+    Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo, Side,
 };
 pub use oscillator::{Coefficients, FrictionOscillator, Oscillator, Regime};
 pub use param::{ParamError, ParamSet};

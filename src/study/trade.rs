@@ -276,8 +276,8 @@ impl Measure<'_> {
     fn measure<S: SmoothModel>(self) -> Result<Trade, TradeError> {
         let name = S::INFO.name;
         let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        let p = S::Params::from_pairs(S::INFO, &pairs)
-            .map_err(|e| TradeError::Input(e.to_string()))?;
+        let p =
+            S::Params::from_pairs(S::INFO, &pairs).map_err(|e| TradeError::Input(e.to_string()))?;
         // Piecewise predictions first: the finest one gives the period N of the motion.
         let mut pw = Vec::new();
         for &n in self.pieces {
