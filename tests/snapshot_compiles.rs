@@ -25,7 +25,7 @@ mod coulomb_snapshot {
     include!("snapshots/coulomb.rs");
 }
 
-use stickslip::{FrictionOscillator, Model};
+use stickslip::Model;
 
 /// Every mapping of `A` (built in) and `B` (its snapshot) at a few points,
 /// bit for bit, and the same description.
