@@ -9,7 +9,7 @@ mod common;
 use common::{derivative, params_for, rng, TARGETS};
 use rand::Rng;
 use stickslip::models::paper::Paper;
-use stickslip::Model;
+use stickslip::{FrictionOscillator, Model};
 
 #[test]
 fn flows_solve_their_ode_in_every_regime() {

@@ -19,7 +19,7 @@ use rand::{Rng, SeedableRng};
 use stickslip::dynamics::crossing::{first_root, Probe, RootKind};
 use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::Model;
+use stickslip::{FrictionOscillator, Model};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

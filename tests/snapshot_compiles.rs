@@ -1,5 +1,5 @@
-//! The checked-in snapshot of the generated code compiles as it is and
-//! computes what the built-in model computes.
+//! The checked-in snapshots of the generated code compile as they are and
+//! compute what the built-in models compute.
 
 #[allow(
     non_snake_case,
@@ -13,15 +13,54 @@ mod snapshot {
     include!("snapshots/paper.rs");
 }
 
+#[allow(
+    non_snake_case,
+    clippy::excessive_precision,
+    clippy::approx_constant,
+    clippy::redundant_field_names,
+    clippy::single_match,
+    dead_code
+)]
+mod coulomb_snapshot {
+    include!("snapshots/coulomb.rs");
+}
+
 use stickslip::Model;
+
+/// Every mapping of `A` (built in) and `B` (its snapshot) at a few points,
+/// bit for bit, and the same description.
+fn agree<A: Model, B: Model>(p: &A::Params, q: &B::Params) {
+    assert_eq!(A::INFO.name, B::INFO.name);
+    assert_eq!(A::INFO.mappings.len(), B::INFO.mappings.len());
+    assert_eq!(A::IDENTITY.params.len(), B::IDENTITY.params.len());
+    assert_eq!(A::oscillator(p).frequency, B::oscillator(q).frequency);
+    for idx in 0..A::INFO.mappings.len() {
+        for (x0, phi0, x1, phi1) in [(0.1, 0.2, 0.3, 1.9), (-0.4, 1.0, 0.7, 4.0)] {
+            let a = A::mapping(p, idx, x0, phi0, x1, phi1);
+            let b = B::mapping(q, idx, x0, phi0, x1, phi1);
+            // Debug prints every digit, and NaN equal to NaN.
+            assert_eq!(
+                format!("{a:?}"),
+                format!("{b:?}"),
+                "{} mapping {idx}",
+                A::INFO.name
+            );
+        }
+    }
+}
 
 #[test]
 fn snapshot_compiles_and_agrees_with_the_built_model() {
-    let p = stickslip::models::paper::Params::default();
-    let q = snapshot::Params::default();
-    for idx in 0..stickslip::models::paper::Paper::INFO.mappings.len() {
-        let a = stickslip::models::paper::Paper::mapping(&p, idx, 0.1, 0.2, 0.3, 1.9);
-        let b = snapshot::Paper::mapping(&q, idx, 0.1, 0.2, 0.3, 1.9);
-        assert_eq!(a, b);
-    }
+    agree::<stickslip::models::paper::Paper, snapshot::Paper>(
+        &Default::default(),
+        &Default::default(),
+    );
+}
+
+#[test]
+fn coulomb_snapshot_compiles_and_agrees_with_the_built_model() {
+    agree::<stickslip::models::coulomb::Coulomb, coulomb_snapshot::Coulomb>(
+        &Default::default(),
+        &Default::default(),
+    );
 }

@@ -12,7 +12,7 @@ fn measure() -> Trade {
         tols: &[1e-5, 1e-7, 1e-9],
         reference_tol: 1e-12,
     };
-    stickslip::models::visit_smooth("stribeck", m)
+    stickslip::models::visit("stribeck", m)
         .expect("compiled in")
         .expect("trade measured")
 }

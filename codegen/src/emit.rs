@@ -403,9 +403,10 @@ fn params_code(model: &Model, free: &[usize]) -> ParamsCode {
     }
 }
 
-/// Items of a model with a smooth law: its `Params`, a static `INFO` (no
-/// boundaries: the law is not piecewise) and a type implementing
-/// `SmoothModel` whose `kinetic` gives the law and its exact slope.
+/// Items of a model with a smooth law: its `Params`, a static `INFO` (a
+/// `SmoothInfo`: no boundaries, the law is not piecewise) and a type
+/// implementing `FrictionOscillator` and `SmoothModel`, whose `kinetic`
+/// gives the law and its exact slope.
 fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let law = model.law.as_ref().expect("a smooth model");
     let free: Vec<usize> = (0..model.params.len()).collect();
@@ -475,9 +476,9 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     let smooth_check = quote! {
             fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
                 let p = self;
-                ::stickslip::model::param::check_values(self, &INFO)?;
+                ::stickslip::model::param::check_values(self, &INFO.identity)?;
                 #cstmts
-                ::stickslip::model::param::check_conditions(&INFO, ::stickslip::model::param::Conditions {
+                ::stickslip::model::param::check_conditions(&[], ::stickslip::model::param::Conditions {
                     mass: #cm,
                     stiffness: #cs,
                     frequency: #cw,
@@ -490,26 +491,17 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
     quote! {
         #params_items
 
-        /// Static description (no boundaries: the law is smooth; see the `pieces` scenes).
-        pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
-            name: #name,
-            model: #name,
-            scene: None,
-            doc: #docs,
-            params: &[#(#param_infos)*],
-            free: &[#(#free_idx)*],
-            boundaries: &[],
-            domains: &[],
-            mappings: &[],
-            structures: &[],
-        };
-
-        /// Static description of the law.
-        pub static SMOOTH_INFO: ::stickslip::model::smooth::SmoothInfo = ::stickslip::model::smooth::SmoothInfo {
-            name: #name,
-            doc: #docs,
-            params: INFO.params,
-            free: INFO.free,
+        /// Static description of the model and its law (no boundaries: the law
+        /// is smooth; see the `pieces` scenes).
+        pub static INFO: ::stickslip::model::smooth::SmoothInfo = ::stickslip::model::smooth::SmoothInfo {
+            identity: ::stickslip::Identity {
+                name: #name,
+                model: #name,
+                scene: None,
+                doc: #docs,
+                params: &[#(#param_infos)*],
+                free: &[#(#free_idx)*],
+            },
             law: #law_text,
             range: #range_lit,
         };
@@ -518,14 +510,18 @@ fn smooth_items(model: &Model, diags: &mut Diagnostics) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #type_ident;
 
-        impl ::stickslip::model::smooth::SmoothModel for #type_ident {
+        impl ::stickslip::FrictionOscillator for #type_ident {
             type Params = Params;
-            const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &SMOOTH_INFO;
+            const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
             #[inline]
             fn oscillator(p: &Params) -> ::stickslip::Oscillator {
                 #ostmts
                 ::stickslip::Oscillator { mass: #om, damping: #od, stiffness: #oc, amplitude: #oa, frequency: #ow }
             }
+        }
+
+        impl ::stickslip::model::smooth::SmoothModel for #type_ident {
+            const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &INFO;
             #[inline]
             fn belt(p: &Params) -> f64 {
                 #bstmts
@@ -609,9 +605,9 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
     let check_fn = quote! {
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::model::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_values(self, &INFO.identity)?;
             #cstmts
-            ::stickslip::model::param::check_conditions(&INFO, ::stickslip::model::param::Conditions {
+            ::stickslip::model::param::check_conditions(INFO.boundaries, ::stickslip::model::param::Conditions {
                 mass: #mass_t,
                 stiffness: #stiff_t,
                 frequency: #freq_t,
@@ -996,12 +992,14 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
 
         #info_doc
         pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
-            name: #display_name,
-            model: #model_name,
-            scene: #scene_name,
-            doc: #model_docs,
-            params: &[#(#param_infos)*],
-            free: &[#(#free_idx)*],
+            identity: ::stickslip::Identity {
+                name: #display_name,
+                model: #model_name,
+                scene: #scene_name,
+                doc: #model_docs,
+                params: &[#(#param_infos)*],
+                free: &[#(#free_idx)*],
+            },
             boundaries: &[#(#boundary_infos)*],
             domains: &[#(#domain_infos)*],
             mappings: &[#(#mapping_infos)*],
@@ -1012,8 +1010,14 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #type_ident;
 
-        impl ::stickslip::Model for #type_ident {
+        impl ::stickslip::FrictionOscillator for #type_ident {
             type Params = Params;
+            const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+            #[inline]
+            fn oscillator(p: &Params) -> ::stickslip::Oscillator { oscillator(p) }
+        }
+
+        impl ::stickslip::Model for #type_ident {
             const INFO: &'static ::stickslip::ModelInfo = &INFO;
             #[inline]
             fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
@@ -1023,8 +1027,6 @@ fn instance_items(model: &Model, scene: Option<usize>, diags: &mut Diagnostics) 
             fn boundary_velocity(p: &Params, boundary: usize) -> f64 {
                 boundary_velocities(p).get(boundary).copied().unwrap_or(f64::NAN)
             }
-            #[inline]
-            fn oscillator(p: &Params) -> ::stickslip::Oscillator { oscillator(p) }
             #[inline]
             fn static_bound(p: &Params) -> ::core::option::Option<f64> { #static_bound_body }
             #[inline]

@@ -11,6 +11,10 @@
 //! 4. [`equations`] — the flows, mapping residuals, vector fields and force
 //!    criteria as graph nodes; exact derivatives by [`expr::Graph::diff`];
 //! 5. [`emit`] — straight-line Rust, formatted with `prettyplease`.
+//!
+//! Around the generated code, [`registry`] writes the module wrapper both
+//! drivers use and `build.rs`'s catalogue of the compiled-in models;
+//! [`expand`] is all of the proc-macro but its token conversion.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -22,6 +26,8 @@ pub mod diagnostic;
 pub mod emit;
 #[cfg(feature = "generator")]
 pub mod equations;
+#[cfg(feature = "generator")]
+pub mod expand;
 #[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod expr;
@@ -39,6 +45,8 @@ pub mod names;
 pub mod parse;
 #[cfg(feature = "generator")]
 pub mod pieces;
+#[cfg(feature = "generator")]
+pub mod registry;
 #[cfg(feature = "generator")]
 pub mod report;
 #[cfg(feature = "generator")]
@@ -60,11 +68,6 @@ pub use emit::Options;
 #[cfg(feature = "generator")]
 pub use report::{check_file, check_source, Located, Position, Report, Severity};
 
-/// Lints allowed on a generated module: parameter names keep the model's
-/// spelling (`V1`, `Q0`), folded constants keep every digit, and field or
-/// match shapes follow the model rather than style.
-#[cfg(feature = "generator")]
-pub const MODULE_LINTS: &str = "non_snake_case, clippy::excessive_precision, clippy::approx_constant, clippy::redundant_field_names, clippy::single_match, clippy::let_and_return";
 #[cfg(feature = "generator")]
 pub use model::Model;
 

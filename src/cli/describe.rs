@@ -36,7 +36,13 @@ struct Describe {
 
 impl ModelVisitor for Describe {
     type Output = Result<String, CliError>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl Describe {
+    fn run<M: Model>(self) -> Result<String, CliError> {
         let p = self.set.params::<M>()?;
         let d = describe::<M>(&p);
         if self.json {

@@ -16,7 +16,7 @@ use stickslip::{dynamics::simulate::SimError, models, ParamError};
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// `--model` names no compiled-in model.
-    #[error("unknown model `{name}`; compiled-in: {}", names(models::ALL.iter().map(|i| i.name)))]
+    #[error("unknown model `{name}`; compiled-in: {}", names(models::ALL.iter().filter_map(models::Entry::piecewise).map(|i| i.name)))]
     UnknownModel {
         /// The name given.
         name: String,
@@ -24,7 +24,7 @@ pub enum CliError {
     /// `trade --model` names no compiled-in model with a smooth law.
     #[error(
         "`{name}` is not a model with a smooth law; compiled-in: {}",
-        names(models::SMOOTH.iter().map(|i| i.name))
+        names(models::ALL.iter().filter_map(models::Entry::smooth).map(|i| i.name))
     )]
     NotSmooth {
         /// The name given.

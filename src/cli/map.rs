@@ -55,7 +55,13 @@ struct MapCmd {
 
 impl ModelVisitor for MapCmd {
     type Output = Result<Outcome, CliError>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl MapCmd {
+    fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
         let x = GridAxis::parse_for::<M>(&self.args.x)?;
         let y = GridAxis::parse_for::<M>(&self.args.y)?;

@@ -1,6 +1,6 @@
 //! `stickslip models`: the compiled-in models and their scenes.
 
-use stickslip::models::ALL;
+use stickslip::models::{Entry, ALL};
 
 use super::outcome::Outcome;
 
@@ -8,7 +8,7 @@ use super::outcome::Outcome;
 /// model the first line of its documentation.
 pub fn run() -> Outcome {
     let mut out = String::new();
-    for info in ALL {
+    for info in ALL.iter().filter_map(Entry::piecewise) {
         let free: Vec<&str> = info.free.iter().map(|&i| info.params[i].name).collect();
         let first_doc = info.doc.lines().next().unwrap_or("");
         out.push_str(&format!(

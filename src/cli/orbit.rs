@@ -72,7 +72,13 @@ struct Orbit {
 
 impl ModelVisitor for Orbit {
     type Output = Result<Outcome, CliError>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl Orbit {
+    fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let info = M::INFO;
         let p = self.set.params::<M>()?;
         let sim = Simulator::<M>::new(p, SimOptions::default())?;

@@ -46,7 +46,13 @@ struct SweepCmd {
 
 impl ModelVisitor for SweepCmd {
     type Output = Result<Outcome, CliError>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.run::<M>())
+    }
+}
+
+impl SweepCmd {
+    fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
         let ParamRange {
             name,

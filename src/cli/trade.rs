@@ -49,10 +49,9 @@ pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
         tols: &args.tol,
         reference_tol: args.reference_tol,
     };
-    let trade =
-        models::visit_smooth(&args.model, measure).ok_or_else(|| CliError::NotSmooth {
-            name: args.model.clone(),
-        })??;
+    let trade = models::visit(&args.model, measure).ok_or_else(|| CliError::NotSmooth {
+        name: args.model.clone(),
+    })??;
     if let Some(path) = &args.plot {
         plot_trade(&trade, path).map_err(CliError::Figure)?;
     }

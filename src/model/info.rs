@@ -1,5 +1,9 @@
-//! The static description of a generated model: its parameters, domains,
-//! boundaries and mappings ([`ModelInfo`]), as the model file declares them.
+//! The static description of a generated model, as the model file declares
+//! it: what every model declares ([`Identity`]: name, doc, parameters) and
+//! what a piecewise-linear one adds ([`ModelInfo`]: domains, boundaries,
+//! mappings).
+
+use std::ops::Deref;
 
 use serde::Serialize;
 
@@ -122,9 +126,12 @@ pub struct MappingInfo {
     pub exit: Option<Side>,
 }
 
-/// Static description of a generated model or scene.
+/// What every generated model or scene declares, whatever its kind: its
+/// name, its model's doc comment and its parameters. [`ModelInfo`] and
+/// [`SmoothInfo`](super::smooth::SmoothInfo) hold one and dereference to it
+/// (`info.name`, `info.params`).
 #[derive(Clone, Copy, Debug)]
-pub struct ModelInfo {
+pub struct Identity {
     /// `paper`, or `paper::sweep_w` for a scene.
     pub name: &'static str,
     /// The model's name.
@@ -137,6 +144,14 @@ pub struct ModelInfo {
     pub params: &'static [ParamInfo],
     /// Indices into `params` of the free ones, in the order of the `Params` fields.
     pub free: &'static [usize],
+}
+
+/// Static description of a generated piecewise-linear model or scene: its
+/// [`Identity`] and its domains, boundaries and mappings.
+#[derive(Clone, Copy, Debug)]
+pub struct ModelInfo {
+    /// Name, doc and parameters.
+    pub identity: Identity,
     /// Boundaries, lowest velocity first.
     pub boundaries: &'static [BoundaryInfo],
     /// Domains, lowest band first.
@@ -145,6 +160,13 @@ pub struct ModelInfo {
     pub mappings: &'static [MappingInfo],
     /// The structures a scene studies.
     pub structures: &'static [&'static str],
+}
+
+impl Deref for ModelInfo {
+    type Target = Identity;
+    fn deref(&self) -> &Identity {
+        &self.identity
+    }
 }
 
 impl ModelInfo {

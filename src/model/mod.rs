@@ -1,11 +1,39 @@
 //! The model layer: what a generated model is to the rest of the library.
 //!
-//! * [`info`] — the static description of a model (parameters, domains,
-//!   boundaries, mappings), written by the generator;
+//! Every model file generates one family of types:
+//!
+//! ```text
+//!                    FrictionOscillator      Params, IDENTITY: &Identity, oscillator()
+//!                    /                \
+//!               Model                  SmoothModel
+//!   INFO: &ModelInfo, flows,          INFO: &SmoothInfo, belt(),
+//!   mappings, fields, forces          static_bound(), kinetic()
+//! ```
+//!
+//! * [`FrictionOscillator`] — every generated model: its run-time `Params`,
+//!   its [`Identity`] (name, doc, parameters, the free ones) and its linear
+//!   part ([`Oscillator`]);
+//! * [`Model`] — a piecewise-linear model or scene, solved in closed form;
+//!   its [`ModelInfo`] is an [`Identity`] plus domains, boundaries, mappings.
+//!   Every analysis is generic over `M: Model`;
+//! * [`SmoothModel`] — a model with a smooth friction law, integrated
+//!   numerically; its [`SmoothInfo`] is an [`Identity`] plus the law. Its
+//!   `pieces` scenes are ordinary [`Model`]s.
+//!
+//! One registry holds them all: [`crate::models::ALL`] lists an [`Entry`] per
+//! model and scene, saying which kind it is, and [`crate::models::visit`]
+//! runs a [`ModelVisitor`] — one method per kind — with the one chosen by name.
+//!
+//! The modules:
+//!
+//! * [`info`] — the static descriptions ([`Identity`], [`ModelInfo`]: parameters,
+//!   domains, boundaries, mappings), written by the generator;
 //! * [`param`] — run-time parameter sets, their bounds and checks;
-//! * [`oscillator`] — the linear part and the effective coefficients of a domain;
+//! * [`oscillator`] — the [`FrictionOscillator`] trait, the linear part and the
+//!   effective coefficients of a domain;
 //! * [`piecewise`] — the [`Model`] trait every piecewise-linear model implements;
-//! * [`smooth`] — the [`SmoothModel`](smooth::SmoothModel) trait of models with a smooth law;
+//! * [`smooth`] — the [`SmoothModel`] trait of models with a smooth law;
+//! * [`registry`] — the registry's [`Entry`] and [`ModelVisitor`];
 //! * [`homogeneous`] — the closed-form homogeneous solution the generated flows call.
 //!
 //! The compiled-in models themselves are [`crate::models`]. Nothing here
@@ -16,11 +44,14 @@ pub mod info;
 pub mod oscillator;
 pub mod param;
 pub mod piecewise;
+pub mod registry;
 pub mod smooth;
 
 pub use info::{
-    Bound, BoundaryInfo, DomainInfo, MappingInfo, MappingKind, ModelInfo, ParamInfo, Side,
+    Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo, Side,
 };
-pub use oscillator::{Coefficients, Oscillator, Regime};
+pub use oscillator::{Coefficients, FrictionOscillator, Oscillator, Regime};
 pub use param::{ParamError, ParamSet};
-pub use piecewise::{MappingEval, Model, ModelVisitor, StickForces};
+pub use piecewise::{MappingEval, Model, StickForces};
+pub use registry::{Entry, ModelVisitor};
+pub use smooth::{SmoothInfo, SmoothModel};

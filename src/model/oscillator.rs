@@ -1,7 +1,25 @@
-//! The oscillator's linear part and the effective coefficients of a domain,
-//! with its damping regime (SPEC §1, Eq. A.1).
+//! What every generated model is, a [`FrictionOscillator`]; its linear part
+//! ([`Oscillator`]) and the effective coefficients of a domain, with its
+//! damping regime (SPEC §1, Eq. A.1).
 
 use serde::Serialize;
+
+use super::info::Identity;
+use super::param::ParamSet;
+
+/// A periodically forced oscillator with friction, `x'' + 2 d x' + c x =
+/// A0 cos(W t) − f(x')`: what every generated model is, whatever the form of
+/// its friction law. [`Model`](super::Model) (piecewise-linear, solved in
+/// closed form) and [`SmoothModel`](super::smooth::SmoothModel) (a smooth
+/// law, integrated) add the law.
+pub trait FrictionOscillator: Copy + Default + Send + Sync + 'static {
+    /// The run-time parameters.
+    type Params: ParamSet;
+    /// Name, doc and parameters, as the model file declares them.
+    const IDENTITY: &'static Identity;
+    /// The oscillator's linear part.
+    fn oscillator(p: &Self::Params) -> Oscillator;
+}
 
 /// Effective coefficients of one domain: `x'' + two_d x' + c x = A0 cos(W t) - b` (SPEC Eq. A.1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

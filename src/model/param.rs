@@ -1,7 +1,7 @@
 //! Run-time parameters: the generated `Params` structs implement [`ParamSet`];
 //! their validating checks report a typed [`ParamError`].
 
-use super::info::ModelInfo;
+use super::info::{BoundaryInfo, Identity};
 
 /// Why a parameter set was rejected.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -101,7 +101,7 @@ pub trait ParamSet: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync +
     }
 
     /// The defaults with the given values set, checked.
-    fn from_pairs(info: &ModelInfo, pairs: &[(&str, f64)]) -> Result<Self, ParamError> {
+    fn from_pairs(info: &Identity, pairs: &[(&str, f64)]) -> Result<Self, ParamError> {
         let mut p = Self::default();
         for &(name, value) in pairs {
             match Self::index_of(name) {
@@ -114,7 +114,7 @@ pub trait ParamSet: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync +
     }
 }
 
-fn unknown_or_fixed(info: &ModelInfo, name: &str) -> ParamError {
+fn unknown_or_fixed(info: &Identity, name: &str) -> ParamError {
     let free: Vec<&str> = info.free.iter().map(|&i| info.params[i].name).collect();
     match info.params.iter().find(|p| p.name == name) {
         Some(p) => ParamError::Fixed {
@@ -132,7 +132,7 @@ fn unknown_or_fixed(info: &ModelInfo, name: &str) -> ParamError {
 }
 
 /// Finite values within their declared bounds (called by generated `check`).
-pub fn check_values<P: ParamSet>(p: &P, info: &ModelInfo) -> Result<(), ParamError> {
+pub fn check_values<P: ParamSet>(p: &P, info: &Identity) -> Result<(), ParamError> {
     for (k, &i) in info.free.iter().enumerate() {
         let pi = &info.params[i];
         let value = p.get(k);
@@ -171,8 +171,9 @@ pub struct Conditions<'a> {
     pub stick: Option<(f64, f64, f64)>,
 }
 
-/// Check [`Conditions`] (called by generated `check`).
-pub fn check_conditions(info: &ModelInfo, c: Conditions) -> Result<(), ParamError> {
+/// Check [`Conditions`] (called by generated `check`); `boundaries` are the
+/// model's, to name those out of order.
+pub fn check_conditions(boundaries: &[BoundaryInfo], c: Conditions) -> Result<(), ParamError> {
     for (what, value) in [
         ("mass", c.mass),
         ("stiffness", c.stiffness),
@@ -185,9 +186,9 @@ pub fn check_conditions(info: &ModelInfo, c: Conditions) -> Result<(), ParamErro
     for (k, w) in c.velocities.windows(2).enumerate() {
         if w[0].partial_cmp(&w[1]) != Some(std::cmp::Ordering::Less) {
             return Err(ParamError::BoundaryOrder {
-                lower: info.boundaries[k].label,
+                lower: boundaries[k].label,
                 lower_v: w[0],
-                upper: info.boundaries[k + 1].label,
+                upper: boundaries[k + 1].label,
                 upper_v: w[1],
             });
         }

@@ -1,6 +1,5 @@
 //! What a generated piecewise-linear model is to the runtime: the [`Model`]
-//! trait, the values it returns ([`MappingEval`], [`StickForces`]) and the
-//! visitor that reaches a model chosen at run time by name.
+//! trait and the values it returns ([`MappingEval`], [`StickForces`]).
 //!
 //! Analyses are generic over `M: Model`; they never refer to a model by name.
 
@@ -8,8 +7,7 @@ use nalgebra::{Matrix2, Vector2};
 use serde::Serialize;
 
 use super::info::ModelInfo;
-use super::oscillator::{Coefficients, Oscillator};
-use super::param::ParamSet;
+use super::oscillator::{Coefficients, FrictionOscillator};
 
 /// Forces on the stick boundary at a point `(x, W t)` (SPEC §3, Eqs. 2, 24–25).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -60,23 +58,21 @@ impl MappingEval {
     }
 }
 
-/// A generated model: closed-form flows, mapping residuals with analytic
-/// Jacobians, vector fields and force criteria, all specialized at build time.
+/// A generated piecewise-linear model: closed-form flows, mapping residuals
+/// with analytic Jacobians, vector fields and force criteria, all specialized
+/// at build time. Its parameters and linear part are those of the
+/// [`FrictionOscillator`] it is.
 ///
 /// Indices are those of [`ModelInfo`]: domains and boundaries lowest first,
 /// mappings in `INFO.mappings` order. An out-of-range index yields NaN.
-pub trait Model: Copy + Default + Send + Sync + 'static {
-    /// The run-time parameters.
-    type Params: ParamSet;
-    /// The static description.
+pub trait Model: FrictionOscillator {
+    /// The static description: the identity and the domains, boundaries and mappings.
     const INFO: &'static ModelInfo;
 
     /// Effective coefficients of domain `domain`.
     fn coefficients(p: &Self::Params, domain: usize) -> Coefficients;
     /// Velocity of boundary `boundary`.
     fn boundary_velocity(p: &Self::Params, boundary: usize) -> f64;
-    /// The oscillator's linear part.
-    fn oscillator(p: &Self::Params) -> Oscillator;
     /// `as`, when the model has a stick boundary.
     fn static_bound(p: &Self::Params) -> Option<f64>;
     /// `[x, v]` at phase `phi1` of the flow in `domain` from `(x0, v0)` at phase `phi0`.
@@ -103,12 +99,4 @@ pub trait Model: Copy + Default + Send + Sync + 'static {
         x1: f64,
         phi1: f64,
     ) -> MappingEval;
-}
-
-/// Something to do with a model chosen at run time by name (see [`crate::models::visit`]).
-pub trait ModelVisitor {
-    /// What it returns.
-    type Output;
-    /// Do it with model `M`.
-    fn visit<M: Model>(self) -> Self::Output;
 }

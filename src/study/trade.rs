@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::dynamics::integrate::{Integrator, Side, State};
 use crate::dynamics::simulate::{Location, Segment, SimOptions, Simulator};
 use crate::model::param::ParamSet;
-use crate::model::smooth::{SmoothModel, SmoothVisitor};
+use crate::model::smooth::SmoothModel;
 use crate::model::{MappingKind, Model, ModelVisitor};
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 
@@ -243,10 +243,13 @@ struct Piecewise<'a> {
 
 impl ModelVisitor for Piecewise<'_> {
     type Output = Result<(Fingerprint, String, f64), String>;
-    fn visit<M: Model>(self) -> Self::Output {
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
         let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        let p = M::Params::from_pairs(M::INFO, &pairs).map_err(|e| e.to_string())?;
-        piecewise::<M>(p)
+        Some(
+            M::Params::from_pairs(M::INFO, &pairs)
+                .map_err(|e| e.to_string())
+                .and_then(piecewise::<M>),
+        )
     }
 }
 
@@ -262,13 +265,19 @@ pub struct Measure<'a> {
     pub reference_tol: f64,
 }
 
-impl SmoothVisitor for Measure<'_> {
+impl ModelVisitor for Measure<'_> {
     type Output = Result<Trade, TradeError>;
-    fn visit<S: SmoothModel>(self) -> Self::Output {
+    fn smooth<S: SmoothModel>(self) -> Option<Self::Output> {
+        Some(self.measure::<S>())
+    }
+}
+
+impl Measure<'_> {
+    fn measure<S: SmoothModel>(self) -> Result<Trade, TradeError> {
         let name = S::INFO.name;
         let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        let p = S::Params::from_pairs(&smooth_info_as_model::<S>(), &pairs)
-            .map_err(|e| TradeError::Input(e.to_string()))?;
+        let p =
+            S::Params::from_pairs(S::INFO, &pairs).map_err(|e| TradeError::Input(e.to_string()))?;
         // Piecewise predictions first: the finest one gives the period N of the motion.
         let mut pw = Vec::new();
         for &n in self.pieces {
@@ -364,22 +373,6 @@ impl SmoothVisitor for Measure<'_> {
             rows,
             order,
         })
-    }
-}
-
-/// The model info the smooth model's parameters are checked against.
-fn smooth_info_as_model<S: SmoothModel>() -> crate::ModelInfo {
-    crate::ModelInfo {
-        name: S::INFO.name,
-        model: S::INFO.name,
-        scene: None,
-        doc: S::INFO.doc,
-        params: S::INFO.params,
-        free: S::INFO.free,
-        boundaries: &[],
-        domains: &[],
-        mappings: &[],
-        structures: &[],
     }
 }
 

@@ -132,12 +132,12 @@ impl ::stickslip::ParamSet for Params {
     }
     fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
         let p = self;
-        ::stickslip::model::param::check_values(self, &INFO)?;
+        ::stickslip::model::param::check_values(self, &INFO.identity)?;
         let t0 = p.m * p.g;
         let t1 = 1.0 / p.m;
         let t2 = t1 * (p.muk * t0);
         ::stickslip::model::param::check_conditions(
-            &INFO,
+            INFO.boundaries,
             ::stickslip::model::param::Conditions {
                 mass: p.m,
                 stiffness: p.c,
@@ -150,121 +150,123 @@ impl ::stickslip::ParamSet for Params {
 }
 /// Static description of `paper`.
 pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
-    name: "paper",
-    model: "paper",
-    scene: None,
-    doc: "The periodically forced friction oscillator of the source paper (SPEC §1):\na mass on a belt moving at speed `V`, a spring, a viscous damper, a harmonic\nforce, and a kinetic friction law of four affine pieces with a static jump\nat the belt speed. Friction is written per unit mass (Eq. 1 divided by m).",
-    params: &[
-        ::stickslip::ParamInfo {
-            name: "m",
-            default: 5.0,
-            bounds: &[(::stickslip::Bound::Gt, 0.0)],
-            doc: "Mass.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "d",
-            default: 0.1,
-            bounds: &[(::stickslip::Bound::Ge, 0.0)],
-            doc: "Viscous damping per unit mass (`d = r / 2m`).",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "c",
-            default: 30.0,
-            bounds: &[(::stickslip::Bound::Gt, 0.0)],
-            doc: "Stiffness per unit mass (`c = k / m`).",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "V",
-            default: 3.0,
-            bounds: &[],
-            doc: "Belt speed.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "V1",
-            default: 4.5,
-            bounds: &[],
-            doc: "Velocity of the upper slope change.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "V2",
-            default: 1.5,
-            bounds: &[],
-            doc: "Velocity of the lower slope change.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "mus",
-            default: 0.5,
-            bounds: &[(::stickslip::Bound::Ge, 0.0)],
-            doc: "Static friction coefficient.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "muk",
-            default: 0.4,
-            bounds: &[(::stickslip::Bound::Ge, 0.0)],
-            doc: "Kinetic friction coefficient.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "mu1",
-            default: 0.1,
-            bounds: &[],
-            doc: "Friction slope above V1.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "mu2",
-            default: 0.5,
-            bounds: &[],
-            doc: "Friction slope between V and V1.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "mu3",
-            default: 0.1,
-            bounds: &[],
-            doc: "Friction slope between V2 and V.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "mu4",
-            default: 0.5,
-            bounds: &[],
-            doc: "Friction slope below V2.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "g",
-            default: 9.8,
-            bounds: &[(::stickslip::Bound::Gt, 0.0)],
-            doc: "Gravity.",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "Q0",
-            default: 70.0,
-            bounds: &[],
-            doc: "Forcing amplitude (a force; `A0 = Q0 / m`).",
-            free: true,
-        },
-        ::stickslip::ParamInfo {
-            name: "W",
-            default: 3.0,
-            bounds: &[(::stickslip::Bound::Gt, 0.0)],
-            doc: "Forcing frequency (the paper's Omega).",
-            free: true,
-        },
-    ],
-    free: &[
-        0usize, 1usize, 2usize, 3usize, 4usize, 5usize, 6usize, 7usize, 8usize, 9usize,
-        10usize, 11usize, 12usize, 13usize, 14usize,
-    ],
+    identity: ::stickslip::Identity {
+        name: "paper",
+        model: "paper",
+        scene: None,
+        doc: "The periodically forced friction oscillator of the source paper (SPEC §1):\na mass on a belt moving at speed `V`, a spring, a viscous damper, a harmonic\nforce, and a kinetic friction law of four affine pieces with a static jump\nat the belt speed. Friction is written per unit mass (Eq. 1 divided by m).",
+        params: &[
+            ::stickslip::ParamInfo {
+                name: "m",
+                default: 5.0,
+                bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                doc: "Mass.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "d",
+                default: 0.1,
+                bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                doc: "Viscous damping per unit mass (`d = r / 2m`).",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "c",
+                default: 30.0,
+                bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                doc: "Stiffness per unit mass (`c = k / m`).",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "V",
+                default: 3.0,
+                bounds: &[],
+                doc: "Belt speed.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "V1",
+                default: 4.5,
+                bounds: &[],
+                doc: "Velocity of the upper slope change.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "V2",
+                default: 1.5,
+                bounds: &[],
+                doc: "Velocity of the lower slope change.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "mus",
+                default: 0.5,
+                bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                doc: "Static friction coefficient.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "muk",
+                default: 0.4,
+                bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                doc: "Kinetic friction coefficient.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "mu1",
+                default: 0.1,
+                bounds: &[],
+                doc: "Friction slope above V1.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "mu2",
+                default: 0.5,
+                bounds: &[],
+                doc: "Friction slope between V and V1.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "mu3",
+                default: 0.1,
+                bounds: &[],
+                doc: "Friction slope between V2 and V.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "mu4",
+                default: 0.5,
+                bounds: &[],
+                doc: "Friction slope below V2.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "g",
+                default: 9.8,
+                bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                doc: "Gravity.",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "Q0",
+                default: 70.0,
+                bounds: &[],
+                doc: "Forcing amplitude (a force; `A0 = Q0 / m`).",
+                free: true,
+            },
+            ::stickslip::ParamInfo {
+                name: "W",
+                default: 3.0,
+                bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                doc: "Forcing frequency (the paper's Omega).",
+                free: true,
+            },
+        ],
+        free: &[
+            0usize, 1usize, 2usize, 3usize, 4usize, 5usize, 6usize, 7usize, 8usize,
+            9usize, 10usize, 11usize, 12usize, 13usize, 14usize,
+        ],
+    },
     boundaries: &[
         ::stickslip::BoundaryInfo {
             label: "Sigma3",
@@ -422,8 +424,15 @@ pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
 /// Model `paper`, every parameter free.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Paper;
-impl ::stickslip::Model for Paper {
+impl ::stickslip::FrictionOscillator for Paper {
     type Params = Params;
+    const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+    #[inline]
+    fn oscillator(p: &Params) -> ::stickslip::Oscillator {
+        oscillator(p)
+    }
+}
+impl ::stickslip::Model for Paper {
     const INFO: &'static ::stickslip::ModelInfo = &INFO;
     #[inline]
     fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
@@ -438,10 +447,6 @@ impl ::stickslip::Model for Paper {
     #[inline]
     fn boundary_velocity(p: &Params, boundary: usize) -> f64 {
         boundary_velocities(p).get(boundary).copied().unwrap_or(f64::NAN)
-    }
-    #[inline]
-    fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-        oscillator(p)
     }
     #[inline]
     fn static_bound(p: &Params) -> ::core::option::Option<f64> {
@@ -1819,9 +1824,9 @@ pub mod sweep_w {
         }
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::model::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_values(self, &INFO.identity)?;
             ::stickslip::model::param::check_conditions(
-                &INFO,
+                INFO.boundaries,
                 ::stickslip::model::param::Conditions {
                     mass: 5.0,
                     stiffness: 30.0,
@@ -1834,118 +1839,120 @@ pub mod sweep_w {
     }
     /// Static description of `paper::sweep_w`.
     pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
-        name: "paper::sweep_w",
-        model: "paper",
-        scene: Some("sweep_w"),
-        doc: "The periodically forced friction oscillator of the source paper (SPEC §1):\na mass on a belt moving at speed `V`, a spring, a viscous damper, a harmonic\nforce, and a kinetic friction law of four affine pieces with a static jump\nat the belt speed. Friction is written per unit mass (Eq. 1 divided by m).",
-        params: &[
-            ::stickslip::ParamInfo {
-                name: "m",
-                default: 5.0,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Mass.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "d",
-                default: 0.1,
-                bounds: &[(::stickslip::Bound::Ge, 0.0)],
-                doc: "Viscous damping per unit mass (`d = r / 2m`).",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "c",
-                default: 30.0,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Stiffness per unit mass (`c = k / m`).",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "V",
-                default: 3.0,
-                bounds: &[],
-                doc: "Belt speed.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "V1",
-                default: 4.5,
-                bounds: &[],
-                doc: "Velocity of the upper slope change.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "V2",
-                default: 1.5,
-                bounds: &[],
-                doc: "Velocity of the lower slope change.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mus",
-                default: 0.5,
-                bounds: &[(::stickslip::Bound::Ge, 0.0)],
-                doc: "Static friction coefficient.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "muk",
-                default: 0.4,
-                bounds: &[(::stickslip::Bound::Ge, 0.0)],
-                doc: "Kinetic friction coefficient.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu1",
-                default: 0.1,
-                bounds: &[],
-                doc: "Friction slope above V1.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu2",
-                default: 0.5,
-                bounds: &[],
-                doc: "Friction slope between V and V1.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu3",
-                default: 0.1,
-                bounds: &[],
-                doc: "Friction slope between V2 and V.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu4",
-                default: 0.5,
-                bounds: &[],
-                doc: "Friction slope below V2.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "g",
-                default: 9.8,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Gravity.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "Q0",
-                default: 70.0,
-                bounds: &[],
-                doc: "Forcing amplitude (a force; `A0 = Q0 / m`).",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "W",
-                default: 3.0,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Forcing frequency (the paper's Omega).",
-                free: true,
-            },
-        ],
-        free: &[14usize],
+        identity: ::stickslip::Identity {
+            name: "paper::sweep_w",
+            model: "paper",
+            scene: Some("sweep_w"),
+            doc: "The periodically forced friction oscillator of the source paper (SPEC §1):\na mass on a belt moving at speed `V`, a spring, a viscous damper, a harmonic\nforce, and a kinetic friction law of four affine pieces with a static jump\nat the belt speed. Friction is written per unit mass (Eq. 1 divided by m).",
+            params: &[
+                ::stickslip::ParamInfo {
+                    name: "m",
+                    default: 5.0,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Mass.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "d",
+                    default: 0.1,
+                    bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                    doc: "Viscous damping per unit mass (`d = r / 2m`).",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "c",
+                    default: 30.0,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Stiffness per unit mass (`c = k / m`).",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "V",
+                    default: 3.0,
+                    bounds: &[],
+                    doc: "Belt speed.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "V1",
+                    default: 4.5,
+                    bounds: &[],
+                    doc: "Velocity of the upper slope change.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "V2",
+                    default: 1.5,
+                    bounds: &[],
+                    doc: "Velocity of the lower slope change.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mus",
+                    default: 0.5,
+                    bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                    doc: "Static friction coefficient.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "muk",
+                    default: 0.4,
+                    bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                    doc: "Kinetic friction coefficient.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu1",
+                    default: 0.1,
+                    bounds: &[],
+                    doc: "Friction slope above V1.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu2",
+                    default: 0.5,
+                    bounds: &[],
+                    doc: "Friction slope between V and V1.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu3",
+                    default: 0.1,
+                    bounds: &[],
+                    doc: "Friction slope between V2 and V.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu4",
+                    default: 0.5,
+                    bounds: &[],
+                    doc: "Friction slope below V2.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "g",
+                    default: 9.8,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Gravity.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "Q0",
+                    default: 70.0,
+                    bounds: &[],
+                    doc: "Forcing amplitude (a force; `A0 = Q0 / m`).",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "W",
+                    default: 3.0,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Forcing frequency (the paper's Omega).",
+                    free: true,
+                },
+            ],
+            free: &[14usize],
+        },
         boundaries: &[
             ::stickslip::BoundaryInfo {
                 label: "Sigma3",
@@ -2100,8 +2107,15 @@ pub mod sweep_w {
     /// Scene `sweep_w` of model `paper`: free parameters `W`; the others are folded into constants.
     #[derive(Clone, Copy, Debug, Default)]
     pub struct SweepW;
-    impl ::stickslip::Model for SweepW {
+    impl ::stickslip::FrictionOscillator for SweepW {
         type Params = Params;
+        const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+        #[inline]
+        fn oscillator(p: &Params) -> ::stickslip::Oscillator {
+            oscillator(p)
+        }
+    }
+    impl ::stickslip::Model for SweepW {
         const INFO: &'static ::stickslip::ModelInfo = &INFO;
         #[inline]
         fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
@@ -2116,10 +2130,6 @@ pub mod sweep_w {
         #[inline]
         fn boundary_velocity(p: &Params, boundary: usize) -> f64 {
             boundary_velocities(p).get(boundary).copied().unwrap_or(f64::NAN)
-        }
-        #[inline]
-        fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-            oscillator(p)
         }
         #[inline]
         fn static_bound(p: &Params) -> ::core::option::Option<f64> {
@@ -3532,9 +3542,9 @@ pub mod reference {
         }
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::model::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_values(self, &INFO.identity)?;
             ::stickslip::model::param::check_conditions(
-                &INFO,
+                INFO.boundaries,
                 ::stickslip::model::param::Conditions {
                     mass: 5.0,
                     stiffness: 30.0,
@@ -3547,118 +3557,120 @@ pub mod reference {
     }
     /// Static description of `paper::reference`.
     pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
-        name: "paper::reference",
-        model: "paper",
-        scene: Some("reference"),
-        doc: "The periodically forced friction oscillator of the source paper (SPEC §1):\na mass on a belt moving at speed `V`, a spring, a viscous damper, a harmonic\nforce, and a kinetic friction law of four affine pieces with a static jump\nat the belt speed. Friction is written per unit mass (Eq. 1 divided by m).",
-        params: &[
-            ::stickslip::ParamInfo {
-                name: "m",
-                default: 5.0,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Mass.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "d",
-                default: 0.1,
-                bounds: &[(::stickslip::Bound::Ge, 0.0)],
-                doc: "Viscous damping per unit mass (`d = r / 2m`).",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "c",
-                default: 30.0,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Stiffness per unit mass (`c = k / m`).",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "V",
-                default: 3.0,
-                bounds: &[],
-                doc: "Belt speed.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "V1",
-                default: 4.5,
-                bounds: &[],
-                doc: "Velocity of the upper slope change.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "V2",
-                default: 1.5,
-                bounds: &[],
-                doc: "Velocity of the lower slope change.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mus",
-                default: 0.5,
-                bounds: &[(::stickslip::Bound::Ge, 0.0)],
-                doc: "Static friction coefficient.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "muk",
-                default: 0.4,
-                bounds: &[(::stickslip::Bound::Ge, 0.0)],
-                doc: "Kinetic friction coefficient.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu1",
-                default: 0.1,
-                bounds: &[],
-                doc: "Friction slope above V1.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu2",
-                default: 0.5,
-                bounds: &[],
-                doc: "Friction slope between V and V1.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu3",
-                default: 0.1,
-                bounds: &[],
-                doc: "Friction slope between V2 and V.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "mu4",
-                default: 0.5,
-                bounds: &[],
-                doc: "Friction slope below V2.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "g",
-                default: 9.8,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Gravity.",
-                free: false,
-            },
-            ::stickslip::ParamInfo {
-                name: "Q0",
-                default: 70.0,
-                bounds: &[],
-                doc: "Forcing amplitude (a force; `A0 = Q0 / m`).",
-                free: true,
-            },
-            ::stickslip::ParamInfo {
-                name: "W",
-                default: 3.0,
-                bounds: &[(::stickslip::Bound::Gt, 0.0)],
-                doc: "Forcing frequency (the paper's Omega).",
-                free: true,
-            },
-        ],
-        free: &[13usize, 14usize],
+        identity: ::stickslip::Identity {
+            name: "paper::reference",
+            model: "paper",
+            scene: Some("reference"),
+            doc: "The periodically forced friction oscillator of the source paper (SPEC §1):\na mass on a belt moving at speed `V`, a spring, a viscous damper, a harmonic\nforce, and a kinetic friction law of four affine pieces with a static jump\nat the belt speed. Friction is written per unit mass (Eq. 1 divided by m).",
+            params: &[
+                ::stickslip::ParamInfo {
+                    name: "m",
+                    default: 5.0,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Mass.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "d",
+                    default: 0.1,
+                    bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                    doc: "Viscous damping per unit mass (`d = r / 2m`).",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "c",
+                    default: 30.0,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Stiffness per unit mass (`c = k / m`).",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "V",
+                    default: 3.0,
+                    bounds: &[],
+                    doc: "Belt speed.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "V1",
+                    default: 4.5,
+                    bounds: &[],
+                    doc: "Velocity of the upper slope change.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "V2",
+                    default: 1.5,
+                    bounds: &[],
+                    doc: "Velocity of the lower slope change.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mus",
+                    default: 0.5,
+                    bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                    doc: "Static friction coefficient.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "muk",
+                    default: 0.4,
+                    bounds: &[(::stickslip::Bound::Ge, 0.0)],
+                    doc: "Kinetic friction coefficient.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu1",
+                    default: 0.1,
+                    bounds: &[],
+                    doc: "Friction slope above V1.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu2",
+                    default: 0.5,
+                    bounds: &[],
+                    doc: "Friction slope between V and V1.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu3",
+                    default: 0.1,
+                    bounds: &[],
+                    doc: "Friction slope between V2 and V.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "mu4",
+                    default: 0.5,
+                    bounds: &[],
+                    doc: "Friction slope below V2.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "g",
+                    default: 9.8,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Gravity.",
+                    free: false,
+                },
+                ::stickslip::ParamInfo {
+                    name: "Q0",
+                    default: 70.0,
+                    bounds: &[],
+                    doc: "Forcing amplitude (a force; `A0 = Q0 / m`).",
+                    free: true,
+                },
+                ::stickslip::ParamInfo {
+                    name: "W",
+                    default: 3.0,
+                    bounds: &[(::stickslip::Bound::Gt, 0.0)],
+                    doc: "Forcing frequency (the paper's Omega).",
+                    free: true,
+                },
+            ],
+            free: &[13usize, 14usize],
+        },
         boundaries: &[
             ::stickslip::BoundaryInfo {
                 label: "Sigma3",
@@ -3804,8 +3816,15 @@ pub mod reference {
     /// Scene `reference` of model `paper`: free parameters `Q0`, `W`; the others are folded into constants.
     #[derive(Clone, Copy, Debug, Default)]
     pub struct Reference;
-    impl ::stickslip::Model for Reference {
+    impl ::stickslip::FrictionOscillator for Reference {
         type Params = Params;
+        const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+        #[inline]
+        fn oscillator(p: &Params) -> ::stickslip::Oscillator {
+            oscillator(p)
+        }
+    }
+    impl ::stickslip::Model for Reference {
         const INFO: &'static ::stickslip::ModelInfo = &INFO;
         #[inline]
         fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
@@ -3820,10 +3839,6 @@ pub mod reference {
         #[inline]
         fn boundary_velocity(p: &Params, boundary: usize) -> f64 {
             boundary_velocities(p).get(boundary).copied().unwrap_or(f64::NAN)
-        }
-        #[inline]
-        fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-            oscillator(p)
         }
         #[inline]
         fn static_bound(p: &Params) -> ::core::option::Option<f64> {
