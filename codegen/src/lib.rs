@@ -27,7 +27,7 @@ pub mod emit;
 #[cfg(feature = "generator")]
 pub mod equations;
 #[cfg(feature = "generator")]
-pub mod expand;
+pub mod invocation;
 #[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod expr;

@@ -14,7 +14,7 @@ use proc_macro::TokenStream;
 /// Generate a model: `model!(file = "models/x.ssm")` or `model! { model x { ... } }`.
 #[proc_macro]
 pub fn model(input: TokenStream) -> TokenStream {
-    stickslip_codegen::expand::model(input.into()).into()
+    stickslip_codegen::invocation::model(input.into()).into()
 }
 
 /// The generated source text of a model, as a string literal (for tests
@@ -22,5 +22,5 @@ pub fn model(input: TokenStream) -> TokenStream {
 #[doc(hidden)]
 #[proc_macro]
 pub fn model_source(input: TokenStream) -> TokenStream {
-    stickslip_codegen::expand::model_source(input.into()).into()
+    stickslip_codegen::invocation::model_source(input.into()).into()
 }
