@@ -30,8 +30,8 @@ use syn::Expr;
 
 use crate::diagnostic::{num, Diagnostics};
 use crate::expr::Graph;
-use crate::instance::{lower_instance, Instance, LAW_V};
 use crate::lower::{lower, Scope};
+use crate::lowered::{lower_instance, Lowered, LAW_V};
 use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param, Scene};
 use crate::parse::{Item, ModelAst};
 
@@ -221,7 +221,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         if diags.len() > errors_before {
             return None;
         }
-        crate::pieces::check_smooth(&model, diags);
+        crate::law::check_smooth(&model, diags);
         model.scenes = scene_asts
             .into_iter()
             .filter_map(|s| check_scene(&model, s, diags))
@@ -333,11 +333,12 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
     if lowered && affine {
         // Boundaries and domains are now sorted: lower again in that order.
         let symbolic = lower_instance(&model, &all, &mut Diagnostics::new());
-        check_continuity(&model, &symbolic, diags);
-        check_static_bound(&model, &symbolic, diags);
+        let view = Piecewise::of(&model);
+        check_continuity(&view, &symbolic, diags);
+        check_static_bound(&view, &symbolic, diags);
     }
 
-    model.mappings = Model::topology_mappings(&model.boundaries, &model.domains);
+    model.mappings = model.all_mappings();
     model.scenes = scene_asts
         .into_iter()
         .filter_map(|s| check_scene(&model, s, diags))
@@ -420,12 +421,51 @@ fn constant(
     }
 }
 
-/// The checks of a generated piecewise-linear model: affine laws, continuity
-/// away from the stick boundary, static bound above the kinetic levels.
-pub fn check_pieces(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
-    for (j, dm) in model.domains.iter().enumerate() {
-        check_affine(inst, dm, j, diags);
+/// A piecewise model as the continuity and static-bound checks see it:
+/// its parameters, its boundaries (sorted) and its domains' labels (sorted;
+/// domain `k + 1` lies above boundary `k`).
+pub struct Piecewise<'a> {
+    /// The model's parameters (defaults and bounds).
+    pub params: &'a [crate::model::Param],
+    /// Each boundary, lowest first.
+    pub edges: Vec<Edge<'a>>,
+    /// Each domain's label, lowest first.
+    pub domain_labels: Vec<u32>,
+}
+
+/// A boundary as [`Piecewise`] sees it.
+pub struct Edge<'a> {
+    /// `Sigma1`.
+    pub label: &'a str,
+    /// Where errors about it point.
+    pub span: Span,
+    /// The static bound, on the stick boundary.
+    pub stick: Option<&'a Expr>,
+}
+
+impl<'a> Piecewise<'a> {
+    /// The view of a checked model.
+    pub fn of(model: &'a Model) -> Self {
+        Piecewise {
+            params: &model.params,
+            edges: model
+                .boundaries
+                .iter()
+                .map(|b| Edge {
+                    label: &b.label,
+                    span: b.span,
+                    stick: b.stick.as_ref(),
+                })
+                .collect(),
+            domain_labels: model.domains.iter().map(|d| d.label).collect(),
+        }
     }
+}
+
+/// The checks of a generated piecewise-linear model (affine by
+/// construction): continuity away from the stick boundary, static bound
+/// above the kinetic levels. `inst` has every parameter free.
+pub fn check_pieces(model: &Piecewise, inst: &Lowered, diags: &mut Diagnostics) {
     check_continuity(model, inst, diags);
     check_static_bound(model, inst, diags);
 }
@@ -503,7 +543,7 @@ fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> 
     })
 }
 
-fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+fn check_positive(model: &Model, inst: &Lowered, diags: &mut Diagnostics) {
     let o = &model.oscillator;
     for (what, id, e) in [
         ("mass", inst.mass, &o.mass),
@@ -525,7 +565,7 @@ fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
 }
 
 /// Sort boundaries by velocity at the defaults, and remap the domains.
-fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) {
+fn sort_boundaries(model: &mut Model, inst: &Lowered, diags: &mut Diagnostics) {
     let vel: Vec<f64> = inst
         .boundary_velocity
         .iter()
@@ -655,7 +695,7 @@ fn check_bands(model: &mut Model, model_span: Span, diags: &mut Diagnostics) {
     }
 }
 
-fn check_affine(inst: &Instance, dm: &Domain, j: usize, diags: &mut Diagnostics) {
+fn check_affine(inst: &Lowered, dm: &Domain, j: usize, diags: &mut Diagnostics) {
     let mut g = inst.graph.clone();
     let law = inst.domains[j].law;
     if is_affine(&mut g, law) {
@@ -718,7 +758,7 @@ fn offending_term<'e>(
             sub,
             &Scope {
                 names,
-                velocity: Some(v),
+                velocity: Some(crate::lower::Velocity::Node(v)),
                 context: "",
             },
             &mut Diagnostics::new(),
@@ -762,11 +802,11 @@ fn perturbations(n: usize, trials: usize) -> Vec<Vec<f64>> {
 /// default (which satisfies them) by halving the step. The continuity check
 /// must only try valid parameter values: a Stribeck law `exp(-|v - V| / vs)`
 /// with `vs` pushed below zero is not a law of the model at all.
-fn perturbed(model: &Model, defaults: &[f64], t: &[f64]) -> Vec<f64> {
+fn perturbed(params: &[crate::model::Param], defaults: &[f64], t: &[f64]) -> Vec<f64> {
     defaults
         .iter()
         .zip(t)
-        .zip(&model.params)
+        .zip(params)
         .map(|((&d, &u), p)| {
             let mut step = d * 0.3 * u + 0.1 * u;
             for _ in 0..60 {
@@ -781,15 +821,15 @@ fn perturbed(model: &Model, defaults: &[f64], t: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+fn check_continuity(model: &Piecewise, inst: &Lowered, diags: &mut Diagnostics) {
     let mut g = inst.graph.clone();
     let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
     let trials = perturbations(defaults.len(), 16);
-    for (k, b) in model.boundaries.iter().enumerate() {
+    for (k, b) in model.edges.iter().enumerate() {
         if b.stick.is_some() {
             continue;
         }
-        let (above, below) = model.sides(k);
+        let (above, below) = (k + 1, k);
         let vk = inst.boundary_velocity[k];
         let fa = g.substitute(inst.domains[above].law, LAW_V, vk);
         let fb = g.substitute(inst.domains[below].law, LAW_V, vk);
@@ -797,7 +837,7 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
         if g.as_const(jump) == Some(0.0) {
             continue; // symbolically continuous
         }
-        let (la, lb) = (model.domains[above].label, model.domains[below].label);
+        let (la, lb) = (model.domain_labels[above], model.domain_labels[below]);
         let at_defaults = g.eval(jump, &defaults, &[]);
         let scale = 1.0 + g.eval(fa, &defaults, &[]).abs();
         // NaN (a law undefined at the boundary) is a jump too.
@@ -816,7 +856,7 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
             continue;
         }
         for t in &trials {
-            let p = perturbed(model, &defaults, t);
+            let p = perturbed(model.params, &defaults, t);
             let jv = g.eval(jump, &p, &[]);
             let sc = 1.0 + g.eval(fa, &p, &[]).abs();
             if jv.abs() > 1e-9 * sc {
@@ -834,24 +874,27 @@ fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
     }
 }
 
-fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
-    let Some(k) = model.stick_boundary() else {
+fn check_static_bound(model: &Piecewise, inst: &Lowered, diags: &mut Diagnostics) {
+    let Some((k, b, e)) = model
+        .edges
+        .iter()
+        .enumerate()
+        .find_map(|(k, b)| Some((k, b, b.stick?)))
+    else {
         return;
     };
     let Some(bound) = inst.static_bound else {
         return;
     };
-    let b = &model.boundaries[k];
     let mut g = inst.graph.clone();
     let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
     let s = g.eval(bound, &defaults, &[]);
-    let (above, below) = model.sides(k);
+    let (above, below) = (k + 1, k);
     let vk = inst.boundary_velocity[k];
     for (j, sign, side) in [(above, 1.0, "above"), (below, -1.0, "below")] {
         let f = g.substitute(inst.domains[j].law, LAW_V, vk);
         let level = sign * g.eval(f, &defaults, &[]);
         if s.is_nan() || s < level.abs() - 1e-12 * (1.0 + level.abs()) {
-            let e = b.stick.as_ref().expect("stick boundary");
             diags.error(
                 e.span(),
                 format!(
@@ -861,7 +904,7 @@ fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
                     num(s),
                     num(level.abs()),
                     b.label,
-                    model.domains[j].label
+                    model.domain_labels[j]
                 ),
             );
         }
