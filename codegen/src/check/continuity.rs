@@ -193,4 +193,3 @@ pub(super) fn check_static_bound(model: &Piecewise, inst: &Lowered, diags: &mut 
         }
     }
 }
-

@@ -32,13 +32,16 @@ use crate::diagnostic::{num, Diagnostics};
 use crate::expr::Graph;
 use crate::lower::{lower, Scope};
 use crate::lowered::{lower_instance, Lowered, LAW_V};
-use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param, Scene};
+use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param};
 use crate::parse::{Item, ModelAst};
 
 mod continuity;
+mod scene;
 
-pub use continuity::{check_pieces, Edge, Piecewise};
 use continuity::{check_continuity, check_static_bound};
+pub use continuity::{check_pieces, Edge, Piecewise};
+use scene::check_scene;
+pub use scene::parse_structure;
 
 /// Check a parsed model. Returns `None` when any error was found.
 pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
@@ -427,69 +430,21 @@ fn constant(
 }
 
 fn check_law(l: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<crate::model::Law> {
-    const KEYS: [&str; 4] = ["belt", "stick", "range", "kinetic"];
-    let mut found: [Option<Expr>; 4] = Default::default();
-    for (key, value) in l.fields {
-        let k = key.to_string();
-        match KEYS.iter().position(|&x| x == k) {
-            Some(i) if found[i].is_some() => {
-                diags.error(key.span(), format!("`{k}` is given twice"))
-            }
-            Some(i) => found[i] = Some(value),
-            None => diags.error(
-                key.span(),
-                format!("unknown law field `{k}`; expected belt, stick, range, kinetic"),
-            ),
-        }
-    }
-    let missing: Vec<&str> = KEYS
-        .iter()
-        .zip(&found)
-        .filter(|(_, f)| f.is_none())
-        .map(|(k, _)| *k)
-        .collect();
-    if !missing.is_empty() {
-        diags.error(l.span, format!("the law lacks {}", missing.join(", ")));
-        return None;
-    }
-    let [belt, stick, range, kinetic] = found.map(|f| f.expect("checked above"));
+    let span = l.span;
+    let [belt, stick, range, kinetic] =
+        fields(l, ["belt", "stick", "range", "kinetic"], "law", diags)?;
     Some(crate::model::Law {
         belt,
         stick,
         range,
         kinetic,
-        span: l.span,
+        span,
     })
 }
 
 fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<Oscillator> {
     const KEYS: [&str; 5] = ["mass", "damping", "stiffness", "forcing", "frequency"];
-    let mut found: [Option<Expr>; 5] = Default::default();
-    for (key, value) in o.fields {
-        let k = key.to_string();
-        match KEYS.iter().position(|&x| x == k) {
-            Some(i) if found[i].is_some() => diags.error(key.span(), format!("`{k}` is given twice")),
-            Some(i) => found[i] = Some(value),
-            None => diags.error(
-                key.span(),
-                format!("unknown oscillator field `{k}`; expected mass, damping, stiffness, forcing, frequency"),
-            ),
-        }
-    }
-    let missing: Vec<&str> = KEYS
-        .iter()
-        .zip(&found)
-        .filter(|(_, f)| f.is_none())
-        .map(|(k, _)| *k)
-        .collect();
-    if !missing.is_empty() {
-        diags.error(
-            o.span,
-            format!("the oscillator lacks {}", missing.join(", ")),
-        );
-        return None;
-    }
-    let [mass, damping, stiffness, forcing, frequency] = found.map(|f| f.expect("checked above"));
+    let [mass, damping, stiffness, forcing, frequency] = fields(o, KEYS, "oscillator", diags)?;
     Some(Oscillator {
         mass,
         damping,
@@ -497,6 +452,45 @@ fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> 
         forcing,
         frequency,
     })
+}
+
+/// The fields `keys` of a `what { key: expr, ... }` block, each exactly
+/// once; an unknown, repeated or missing field is an error.
+fn fields<const N: usize>(
+    block: crate::parse::OscillatorAst,
+    keys: [&str; N],
+    what: &str,
+    diags: &mut Diagnostics,
+) -> Option<[Expr; N]> {
+    let mut found: [Option<Expr>; N] = std::array::from_fn(|_| None);
+    for (key, value) in block.fields {
+        let k = key.to_string();
+        match keys.iter().position(|&x| x == k) {
+            Some(i) if found[i].is_some() => {
+                diags.error(key.span(), format!("`{k}` is given twice"))
+            }
+            Some(i) => found[i] = Some(value),
+            None => diags.error(
+                key.span(),
+                format!("unknown {what} field `{k}`; expected {}", keys.join(", ")),
+            ),
+        }
+    }
+    let missing: Vec<&str> = keys
+        .iter()
+        .zip(&found)
+        .filter(|(_, f)| f.is_none())
+        .map(|(k, _)| *k)
+        .collect();
+    if !missing.is_empty() {
+        diags.error(
+            block.span,
+            format!("the {what} lacks {}", missing.join(", ")),
+        );
+        return None;
+    }
+    let all: Vec<Expr> = found.into_iter().collect::<Option<_>>()?;
+    all.try_into().ok()
 }
 
 fn check_positive(model: &Model, inst: &Lowered, diags: &mut Diagnostics) {
@@ -734,89 +728,4 @@ fn offending_term<'e>(
         }
     }
     e
-}
-
-fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics) -> Option<Scene> {
-    let before = diags.len();
-    let mut free = Vec::new();
-    for name in &s.free {
-        let n = name.to_string();
-        match model.params.iter().position(|p| p.name == n) {
-            Some(i) if free.contains(&i) => {
-                diags.error(name.span(), format!("`{n}` is freed twice"))
-            }
-            Some(i) => free.push(i),
-            None if model.derived.iter().any(|d| d.name == n) => diags.error(
-                name.span(),
-                format!("`{n}` is a derived quantity; free the parameters it is computed from"),
-            ),
-            None => diags.error(name.span(), format!("unknown parameter `{n}`")),
-        }
-    }
-    free.sort_unstable();
-    let mut structures = Vec::new();
-    let mut texts = Vec::new();
-    for lit in &s.structures {
-        match parse_structure(model, &lit.value()) {
-            Ok(st) => {
-                structures.push(st);
-                texts.push(lit.value());
-            }
-            Err(msg) => diags.error(lit.span(), msg),
-        }
-    }
-    let pieces = match &s.pieces {
-        None if model.law.is_some() => {
-            diags.error(
-                s.name.span(),
-                "a scene of a model with a smooth `law` needs `pieces: N;`",
-            );
-            None
-        }
-        None => None,
-        Some(lit) if model.law.is_none() => {
-            diags.error(
-                lit.span(),
-                "`pieces` builds a piecewise-linear model from a smooth `law`; this model has none",
-            );
-            None
-        }
-        Some(lit) => match lit.base10_parse::<u32>() {
-            Ok(n) if (2..=128).contains(&n) && n % 2 == 0 => Some(n),
-            _ => {
-                diags.error(lit.span(), "`pieces` is an even number from 2 to 128 (half on each side of the belt speed)");
-                None
-            }
-        },
-    };
-    (diags.len() == before).then(|| Scene {
-        name: s.name.to_string(),
-        docs: s.docs,
-        free,
-        structures,
-        structure_text: texts,
-        pieces,
-    })
-}
-
-/// Parse `P_{3_31 0_11 3_13 4_33}` (or `P{..}`, or the names alone) into
-/// mapping indices as written (the last one is applied first), by the
-/// grammar the runtime uses ([`crate::structure`]): each mapping ends on the
-/// boundary where the next one starts, and a stick mapping is followed by a
-/// mapping into a domain.
-pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> {
-    let views: Vec<crate::structure::MappingView> = model
-        .mappings
-        .iter()
-        .map(|m| crate::structure::MappingView {
-            name: &m.name,
-            from: m.from,
-            to: m.to,
-            domain_above_from: m.domain.map(|j| model.domains[j].lower == Some(m.from)),
-        })
-        .collect();
-    let labels: Vec<&str> = model.boundaries.iter().map(|b| b.label.as_str()).collect();
-    let applied =
-        crate::structure::parse(&model.name, &views, &labels, text).map_err(|e| e.to_string())?;
-    Ok(applied.iter().rev().map(|&(i, _)| i).collect())
 }
