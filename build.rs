@@ -104,9 +104,9 @@ fn main() {
          /// Run `visitor` with the model or scene called `name` (`paper`, `paper::sweep_w`).\n\
          pub fn visit<V: crate::ModelVisitor>(name: &::core::primitive::str, visitor: V) -> ::core::option::Option<V::Output> {{\n    match name {{\n{visit_arms}        _ => None,\n    }}\n}}\n\n\
          /// Every compiled-in model with a smooth friction law.\n\
-         pub static SMOOTH: &[&crate::smooth::SmoothInfo] = &[{smooth_all}];\n\n\
+         pub static SMOOTH: &[&crate::model::smooth::SmoothInfo] = &[{smooth_all}];\n\n\
          /// Run `visitor` with the smooth-law model called `name`.\n\
-         pub fn visit_smooth<V: crate::smooth::SmoothVisitor>(name: &::core::primitive::str, visitor: V) -> ::core::option::Option<V::Output> {{\n    match name {{\n{smooth_arms}        _ => None,\n    }}\n}}\n\n\
+         pub fn visit_smooth<V: crate::model::smooth::SmoothVisitor>(name: &::core::primitive::str, visitor: V) -> ::core::option::Option<V::Output> {{\n    match name {{\n{smooth_arms}        _ => None,\n    }}\n}}\n\n\
          /// The generated source of model `name`.\n\
          pub fn generated_source(name: &::core::primitive::str) -> ::core::option::Option<&'static ::core::primitive::str> {{\n    match name {{\n{source_arms}        _ => None,\n    }}\n}}\n",
         all = all.join(", "),

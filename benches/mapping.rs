@@ -11,7 +11,7 @@
 //! * `jacobian/generated`: the full model through the `Model` trait (run-time
 //!   mapping index), `jacobian/generated_direct`: `paper::mapping_3_31`;
 //! * `jacobian/hand_written`: a closed form written here, independently of
-//!   the generated code and of `stickslip::homogeneous` (plain `f64`, chain
+//!   the generated code and of `stickslip::model::homogeneous` (plain `f64`, chain
 //!   rule by hand), from the same `paper::Params`;
 //!   `jacobian/hand_written_precomputed`: the same with the parameter-only
 //!   quantities computed once outside the timed loop (what a cache could buy);

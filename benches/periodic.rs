@@ -7,12 +7,12 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use stickslip::attractor::{self, AttractorOptions};
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::motion::solve;
-use stickslip::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
-use stickslip::simulate::{SimOptions, Simulator};
-use stickslip::structure::Structure;
+use stickslip::orbit::attractor::{self, AttractorOptions};
+use stickslip::orbit::motion::solve;
+use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 /// The reference six-mapping motion at W = 5, Q0 = 70 (../shared/reference).

@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::sweep::{sweep, SweepOptions};
+use stickslip::study::sweep::{sweep, SweepOptions};
 
 fn benches(c: &mut Criterion) {
     let base = Params {

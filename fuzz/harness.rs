@@ -12,13 +12,13 @@
 
 #![allow(dead_code)]
 
-use stickslip::attractor::{self, AttractorOptions};
+use stickslip::dynamics::simulate::{SimOptions, Simulator, MAX_STEPS_PER_PERIOD};
 use stickslip::model::Model;
 use stickslip::models::{coulomb, paper, stribeck8};
-use stickslip::motion;
-use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::simulate::{SimOptions, Simulator, MAX_STEPS_PER_PERIOD};
-use stickslip::structure::Structure;
+use stickslip::orbit::attractor::{self, AttractorOptions};
+use stickslip::orbit::motion;
+use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
 use stickslip::ParamSet;
 
 const TAU: f64 = std::f64::consts::TAU;

@@ -16,36 +16,19 @@ extern crate self as stickslip;
 
 pub use nalgebra;
 
-pub mod admissible;
-pub mod attractor;
-pub mod crossing;
-pub mod describe;
-pub mod family;
-pub mod homogeneous;
-pub mod integrate;
-pub mod map;
-pub mod map_plot;
 pub mod model;
 pub mod models;
-pub mod motion;
-pub mod param;
-pub mod periodic;
-pub mod plot;
-pub mod report;
-pub mod simulate;
-pub mod smooth;
-pub mod stability;
-pub mod structure;
-pub mod sweep;
-pub mod sweep_plot;
-pub mod trade;
-pub mod trade_plot;
+
+pub mod dynamics;
+pub mod orbit;
+pub mod output;
+pub mod study;
 
 pub use model::{
-    BoundaryInfo, Coefficients, DomainInfo, MappingEval, MappingInfo, MappingKind, Model,
-    ModelInfo, ModelVisitor, Oscillator, ParamInfo, Regime, Side, StickForces,
+    Bound, BoundaryInfo, Coefficients, DomainInfo, MappingEval, MappingInfo, MappingKind, Model,
+    ModelInfo, ModelVisitor, Oscillator, ParamError, ParamInfo, ParamSet, Regime, Side,
+    StickForces,
 };
-pub use param::{Bound, ParamError, ParamSet};
 
 /// Generate a model inline, or from a model file of your crate:
 ///

@@ -5,13 +5,14 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use stickslip::attractor::{self, Attractor, AttractorOptions};
-use stickslip::motion::{self, OrbitError};
-use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::report::{History, Report};
-use stickslip::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::structure::Structure;
-use stickslip::{describe, models, MappingKind, Model, ModelVisitor, ParamSet};
+use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::motion::{self, OrbitError};
+use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
+use stickslip::output::describe;
+use stickslip::output::report::{History, Report};
+use stickslip::{models, MappingKind, Model, ModelVisitor, ParamSet};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
@@ -178,7 +179,8 @@ struct MapCmd {
 impl ModelVisitor for MapCmd {
     type Output = Result<Outcome, String>;
     fn visit<M: Model>(self) -> Self::Output {
-        use stickslip::map::{plot_map, run_map, GridAxis, MapOptions, Shard};
+        use stickslip::output::map_plot::plot_map;
+        use stickslip::study::map::{run_map, GridAxis, MapOptions, Shard};
         let set = parse_assignments(&self.args.set)?;
         let x = GridAxis::parse_for::<M>(&self.args.x).map_err(|e| e.to_string())?;
         let y = GridAxis::parse_for::<M>(&self.args.y).map_err(|e| e.to_string())?;
@@ -205,7 +207,7 @@ impl ModelVisitor for MapCmd {
     }
 }
 
-fn summary_text(s: &stickslip::map::Summary, out: &std::path::Path) -> String {
+fn summary_text(s: &stickslip::study::map::Summary, out: &std::path::Path) -> String {
     let mut text = format!(
         "{}: {} of {} grid points ({} computed now, {} already done) in {:.2} s{}\n",
         out.display(),
@@ -433,7 +435,7 @@ fn finish(
                 outcome.notes.push(format!("wrote {}", path.display()));
             }
             if let Some(path) = &output.plot {
-                stickslip::plot::plot(&history, &title, path)?;
+                stickslip::output::plot::plot(&history, &title, path)?;
                 outcome.notes.push(format!("wrote {}", path.display()));
             }
         } else {
@@ -640,7 +642,7 @@ fn run(cli: Cli) -> Result<Outcome, String> {
     // A figure format we cannot write is an error before any work.
     if let Command::Orbit { output, .. } | Command::Simulate { output, .. } = &cli.command {
         if let Some(path) = &output.plot {
-            stickslip::plot::Format::of(path)?;
+            stickslip::output::plot::Format::of(path)?;
         }
     }
     match cli.command {
@@ -717,18 +719,18 @@ fn run(cli: Cli) -> Result<Outcome, String> {
         }
         Command::Map(args) => {
             if let Some(path) = &args.plot {
-                stickslip::plot::Format::of(path)?;
+                stickslip::output::plot::Format::of(path)?;
             }
             let model = args.model.clone();
             models::visit(&model, MapCmd { args }).unwrap_or_else(|| Err(unknown_model(&model)))
         }
         Command::Merge { inputs, out, plot } => {
             if let Some(path) = &plot {
-                stickslip::plot::Format::of(path)?;
+                stickslip::output::plot::Format::of(path)?;
             }
-            let summary = stickslip::map::merge(&inputs, &out).map_err(|e| e.to_string())?;
+            let summary = stickslip::study::map::merge(&inputs, &out).map_err(|e| e.to_string())?;
             if let Some(plot) = &plot {
-                stickslip::map::plot_map(&out, plot).map_err(|e| e.to_string())?;
+                stickslip::output::map_plot::plot_map(&out, plot).map_err(|e| e.to_string())?;
             }
             Ok(Outcome::ok(summary_text(&summary, &out)))
         }
@@ -742,10 +744,10 @@ fn run(cli: Cli) -> Result<Outcome, String> {
             plot,
         } => {
             if let Some(path) = &plot {
-                stickslip::plot::Format::of(path)?;
+                stickslip::output::plot::Format::of(path)?;
             }
             let set = parse_assignments(&set)?;
-            let measure = stickslip::trade::Measure {
+            let measure = stickslip::study::trade::Measure {
                 set: &set,
                 pieces: &pieces,
                 tols: &tol,
@@ -754,26 +756,26 @@ fn run(cli: Cli) -> Result<Outcome, String> {
             let trade = models::visit_smooth(&model, measure)
                 .unwrap_or_else(|| {
                     let names: Vec<&str> = models::SMOOTH.iter().map(|i| i.name).collect();
-                    Err(stickslip::trade::TradeError::Input(format!(
+                    Err(stickslip::study::trade::TradeError::Input(format!(
                         "`{model}` is not a model with a smooth law; compiled-in: {}",
                         names.join(", ")
                     )))
                 })
                 .map_err(|e| e.to_string())?;
             if let Some(path) = &plot {
-                stickslip::trade_plot::plot_trade(&trade, path)?;
+                stickslip::output::trade_plot::plot_trade(&trade, path)?;
             }
             if json {
                 Ok(Outcome::ok(
                     serde_json::to_string_pretty(&trade).map_err(|e| e.to_string())?,
                 ))
             } else {
-                Ok(Outcome::ok(stickslip::trade_plot::table(&trade)))
+                Ok(Outcome::ok(stickslip::output::trade_plot::table(&trade)))
             }
         }
         Command::Sweep(args) => {
             if let Some(path) = &args.plot {
-                stickslip::plot::Format::of(path)?;
+                stickslip::output::plot::Format::of(path)?;
             }
             let model = args.model.clone();
             models::visit(&model, SweepCmd { args }).unwrap_or_else(|| Err(unknown_model(&model)))
@@ -805,11 +807,12 @@ impl ModelVisitor for SweepCmd {
         let set = parse_assignments(&self.args.set)?;
         let (name, from, to, count) = parse_range(&self.args.param)?;
         let base = params::<M>(&set)?;
-        let sw = stickslip::sweep::sweep::<M>(base, &name, from, to, count, Default::default())
-            .map_err(|e| e.to_string())?;
+        let sw =
+            stickslip::study::sweep::sweep::<M>(base, &name, from, to, count, Default::default())
+                .map_err(|e| e.to_string())?;
         if let Some(path) = &self.args.plot {
             let title = format!("{} sweep of {name} ({})", M::INFO.name, set_text(&set));
-            stickslip::sweep_plot::plot_sweep(&sw, &title, path)?;
+            stickslip::output::sweep_plot::plot_sweep(&sw, &title, path)?;
         }
         let stdout = if self.args.json {
             let points: Vec<serde_json::Value> = sw

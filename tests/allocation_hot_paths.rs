@@ -10,10 +10,10 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
+use stickslip::dynamics::simulate::{Location, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
-use stickslip::simulate::{Location, SimOptions, Simulator};
-use stickslip::structure::Structure;
+use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 struct Counting;

@@ -285,7 +285,7 @@ fn plot_writes_an_svg_with_the_six_panels() {
     let svg = std::fs::read_to_string(&path).expect("the SVG is written");
     assert!(svg.starts_with("<svg"), "{}", &svg[..svg.len().min(100)]);
     assert!(svg.trim_end().ends_with("</svg>"));
-    for title in stickslip::plot::PANEL_TITLES {
+    for title in stickslip::output::plot::PANEL_TITLES {
         let escaped = title.replace('\'', "&apos;");
         assert_eq!(
             svg.matches(escaped.as_str()).count(),

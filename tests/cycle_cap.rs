@@ -13,11 +13,11 @@
 //!   the number of mappings and periods of the cycle seen; never
 //!   `Unsettled` ("no periodic motion ...").
 
-use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params as PaperParams};
 use stickslip::models::stribeck::pl64::{Params, Pl64};
-use stickslip::motion::OrbitError;
-use stickslip::simulate::{SimOptions, Simulator};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::motion::OrbitError;
 use stickslip::Model;
 
 fn find<M: Model>(sim: &Simulator<M>, max_cycle: Option<usize>) -> Result<Attractor, OrbitError> {

@@ -32,12 +32,12 @@
 //! is positive: spring and forcing overcome friction) and the velocity keeps
 //! its sign in between. Where the first condition fails, the motion has stops.
 
-use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::coulomb::{Coulomb, Params};
-use stickslip::motion::{solve, Motion};
-use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::simulate::{SimOptions, Simulator};
-use stickslip::structure::Structure;
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::motion::{solve, Motion};
+use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;

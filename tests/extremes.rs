@@ -52,12 +52,14 @@
 
 mod common;
 
-use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{
+    Event, EventKind, Location, Segment, SimError, SimOptions, Simulator,
+};
 use stickslip::models::paper::{Paper, Params};
 use stickslip::models::stribeck8::{self, Stribeck8};
-use stickslip::motion::{Motion, OrbitError};
-use stickslip::periodic::SwitchingPoint;
-use stickslip::simulate::{Event, EventKind, Location, Segment, SimError, SimOptions, Simulator};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::motion::{Motion, OrbitError};
+use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -1602,8 +1604,8 @@ fn scaled_deviation(a: &[SwitchingPoint], reference: &[SwitchingPoint], l: f64) 
 
 #[test]
 fn case8_parameter_scales() {
-    use stickslip::motion::solve;
-    use stickslip::periodic::{NewtonOptions, Termination};
+    use stickslip::orbit::motion::solve;
+    use stickslip::orbit::periodic::{NewtonOptions, Termination};
     use stickslip::ParamError;
     let base = Params {
         W: 3.7,

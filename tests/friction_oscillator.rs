@@ -6,10 +6,10 @@
 
 use std::process::Command;
 
-use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{EventKind, Location, SimOptions, Simulator};
 use stickslip::models::coulomb::{Coulomb, Params};
-use stickslip::report::Report;
-use stickslip::simulate::{EventKind, Location, SimOptions, Simulator};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::output::report::Report;
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -300,9 +300,9 @@ fn static_equal_to_kinetic_friction_finds_the_non_stop_motion() {
 /// the same fallback does not turn a damped motion into a family.
 #[test]
 fn orbit_near_a_family_member_reports_the_neutral_family() {
-    use stickslip::motion;
-    use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-    use stickslip::structure::Structure;
+    use stickslip::orbit::motion;
+    use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+    use stickslip::orbit::structure::Structure;
     let (m, c, q0): (f64, f64, f64) = (2.5, 30.0, 70.0);
     let a0 = q0 / m;
     let w = c.sqrt() / 2.0;
@@ -414,7 +414,7 @@ fn simulate_reports_the_unforced_belt_cycle_as_autonomous() {
 /// the motion may drift for ever), and only then.
 #[test]
 fn an_unsettled_undamped_motion_says_so() {
-    use stickslip::motion::OrbitError;
+    use stickslip::orbit::motion::OrbitError;
     let opts = AttractorOptions {
         max_periods: 40,
         ..AttractorOptions::default()

@@ -293,8 +293,8 @@ proptest! {
 /// Now a typed error at once.
 #[test]
 fn a_too_stiff_domain_is_a_typed_error_not_a_hang() {
+    use stickslip::dynamics::simulate::{SimError, SimOptions, Simulator};
     use stickslip::models::paper::{Paper, Params};
-    use stickslip::simulate::{SimError, SimOptions, Simulator};
     let p = Params {
         m: 5.0 * 2f64.powi(-45),
         ..Params::default()
@@ -314,8 +314,8 @@ fn a_too_stiff_domain_is_a_typed_error_not_a_hang() {
 /// step (at most π/4): the search could not advance and looped forever.
 #[test]
 fn a_phase_beyond_resolution_is_a_typed_error_not_a_hang() {
+    use stickslip::dynamics::simulate::{SimError, SimOptions, Simulator};
     use stickslip::models::paper::{Paper, Params};
-    use stickslip::simulate::{SimError, SimOptions, Simulator};
     let sim = Simulator::<Paper>::new(Params::default(), SimOptions::default()).expect("defaults");
     let seg = sim.start(0.0, 0.0, 1e17).expect("finite start");
     let r = sim.run(seg, 1e17 + 64.0, |_| {});
@@ -333,11 +333,11 @@ fn a_phase_beyond_resolution_is_a_typed_error_not_a_hang() {
 /// the whole cycle is now a violation at once (another one takes negative time).
 #[test]
 fn a_solution_spanning_more_than_its_cycle_is_rejected_at_once() {
-    use stickslip::admissible::ViolationKind;
+    use stickslip::dynamics::simulate::{SimOptions, Simulator};
     use stickslip::models::paper::reference::{Params, Reference};
-    use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-    use stickslip::simulate::{SimOptions, Simulator};
-    use stickslip::structure::Structure;
+    use stickslip::orbit::admissible::ViolationKind;
+    use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+    use stickslip::orbit::structure::Structure;
     use stickslip::Model;
     let p = Params {
         Q0: -5.8125,
@@ -357,7 +357,7 @@ fn a_solution_spanning_more_than_its_cycle_is_rejected_at_once() {
         max_iterations: 21,
     };
     let started = std::time::Instant::now();
-    let motion = stickslip::motion::solve(&sim, structure, guess, newton);
+    let motion = stickslip::orbit::motion::solve(&sim, structure, guess, newton);
     assert!(started.elapsed().as_secs_f64() < 1.0);
     assert!(!motion.is_admissible());
     // Newton's step test is in natural units (phases in radians): here the

@@ -16,9 +16,9 @@
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use stickslip::crossing::{first_root, Probe, RootKind};
+use stickslip::dynamics::crossing::{first_root, Probe, RootKind};
+use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;

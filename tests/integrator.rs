@@ -14,9 +14,9 @@
 //! Compared from rest over 30 forcing periods: the same sequence of
 //! (boundary, kind) events, phases within 1e-8 and displacements within 1e-8.
 
+use stickslip::dynamics::simulate::{EventKind, SimOptions, Simulator};
 use stickslip::models::coulomb::{self, Coulomb};
 use stickslip::models::paper::{self, Paper};
-use stickslip::simulate::{EventKind, SimOptions, Simulator};
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;

@@ -10,14 +10,15 @@ use std::process::Command;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use stickslip::attractor::{self, Attractor, AttractorOptions};
-use stickslip::map::{
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
+use stickslip::model::param::ParamError;
+use stickslip::models::paper::{sweep_w::SweepW, Paper, Params};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::output::map_plot;
+use stickslip::study::map::{
     self, classify_point, merge, motion_label, run_map, AxisError, GridAxis, MapError, MapFile,
     MapOptions, PointResult, Shard,
 };
-use stickslip::models::paper::{sweep_w::SweepW, Paper, Params};
-use stickslip::param::ParamError;
-use stickslip::simulate::{SimOptions, Simulator};
 
 /// W = 2.5, 3, …, 5 and Q0 = 70, 80, 90: (W, Q0) = (5, 70) is a reference motion.
 const X: &str = "W=2.5:5:6";
@@ -589,20 +590,20 @@ fn the_map_is_drawn_as_svg_and_png() {
     let file = dir.join("map.csv");
     fs::write(&file, want).unwrap();
     let svg = dir.join("map.svg");
-    map::plot_map(&file, &svg).unwrap();
+    map_plot::plot_map(&file, &svg).unwrap();
     let text = fs::read_to_string(&svg).unwrap();
     assert!(text.contains("<svg"));
     assert!(text.contains(REFERENCE_W5), "legend names the structures");
     let png = dir.join("map.png");
-    map::plot_map(&file, &png).unwrap();
+    map_plot::plot_map(&file, &png).unwrap();
     assert!(fs::metadata(&png).unwrap().len() > 1000);
     // A partial map draws too (missing points hatched).
     let partial = dir.join("partial.csv");
     let text: String = want.lines().take(9).map(|l| format!("{l}\n")).collect();
     fs::write(&partial, text).unwrap();
-    map::plot_map(&partial, &dir.join("partial.svg")).unwrap();
+    map_plot::plot_map(&partial, &dir.join("partial.svg")).unwrap();
     assert!(matches!(
-        map::plot_map(&file, &dir.join("map.gif")),
+        map_plot::plot_map(&file, &dir.join("map.gif")),
         Err(MapError::Plot(_))
     ));
 }

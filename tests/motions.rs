@@ -6,12 +6,12 @@
 mod common;
 
 use common::reference::{references, Reference};
-use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::motion::{solve, Motion};
-use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::simulate::{SimOptions, Simulator};
-use stickslip::structure::Structure;
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::motion::{solve, Motion};
+use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 fn assert_matches(r: &Reference, motion: &Motion, how: &str) {

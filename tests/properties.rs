@@ -16,11 +16,13 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use stickslip::attractor::{self, mapping_between, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{
+    Event, EventKind, Location, Segment, SimError, SimOptions, Simulator,
+};
+use stickslip::model::param::{ParamError, ParamSet};
 use stickslip::models::paper::{self, Paper, Params};
-use stickslip::motion::{Motion, OrbitError};
-use stickslip::param::{ParamError, ParamSet};
-use stickslip::simulate::{Event, EventKind, Location, Segment, SimError, SimOptions, Simulator};
+use stickslip::orbit::attractor::{self, mapping_between, Attractor, AttractorOptions};
+use stickslip::orbit::motion::{Motion, OrbitError};
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;

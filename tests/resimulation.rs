@@ -12,12 +12,12 @@
 mod common;
 
 use common::reference::references;
-use stickslip::attractor::mapping_between;
+use stickslip::dynamics::simulate::{Event, EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::motion::solve;
-use stickslip::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::simulate::{Event, EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::structure::Structure;
+use stickslip::orbit::attractor::mapping_between;
+use stickslip::orbit::motion::solve;
+use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;

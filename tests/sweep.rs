@@ -3,7 +3,7 @@
 //! motion confirmed by an independent simulation.
 
 use stickslip::models::paper::{Paper, Params};
-use stickslip::sweep::{sweep, SweepOptions, TransitionKind};
+use stickslip::study::sweep::{sweep, SweepOptions, TransitionKind};
 
 #[test]
 fn reference_transitions_are_located_within_1e_8() {
@@ -37,11 +37,11 @@ fn reference_transitions_are_located_within_1e_8() {
     assert_eq!(b.boundary.as_deref(), Some("Sigma2"));
 }
 
-use stickslip::attractor::{self, Attractor, AttractorOptions};
+use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::model::Model;
-use stickslip::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::structure::Structure;
-use stickslip::sweep::MotionSummary;
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::structure::Structure;
+use stickslip::study::sweep::MotionSummary;
 
 /// Start a simulation on the motion's first switching point and follow one
 /// cycle: it must come back to the same point (the motion is a real,

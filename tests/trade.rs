@@ -2,7 +2,7 @@
 //! converge to the smooth law at second order, as interpolating a smooth law
 //! predicts; the integrator's own tolerance ladder converges too.
 
-use stickslip::trade::{Measure, Trade};
+use stickslip::study::trade::{Measure, Trade};
 
 fn measure() -> Trade {
     let set = vec![("W".to_string(), 1.5), ("Q0".to_string(), 6.0)];

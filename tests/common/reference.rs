@@ -1,7 +1,7 @@
 //! The reference periodic motions of `../shared/reference/orbits.json`.
 
 use serde_json::Value;
-use stickslip::periodic::SwitchingPoint;
+use stickslip::orbit::periodic::SwitchingPoint;
 
 /// One reference motion.
 pub struct Reference {

@@ -132,13 +132,13 @@ impl ::stickslip::ParamSet for Params {
     }
     fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
         let p = self;
-        ::stickslip::param::check_values(self, &INFO)?;
+        ::stickslip::model::param::check_values(self, &INFO)?;
         let t0 = p.m * p.g;
         let t1 = 1.0 / p.m;
         let t2 = t1 * (p.muk * t0);
-        ::stickslip::param::check_conditions(
+        ::stickslip::model::param::check_conditions(
             &INFO,
-            ::stickslip::param::Conditions {
+            ::stickslip::model::param::Conditions {
                 mass: p.m,
                 stiffness: p.c,
                 frequency: p.W,
@@ -564,7 +564,7 @@ pub fn flow_4(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t13 = x0 - (t8 + (t6 * t9 + t7 * t10));
     let t14 = v0 - p.W * (t7 * t9 - t6 * t10);
     let t15 = (phi1 - phi0) / p.W;
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t15);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t15);
     [
         t8 + (t6 * t11 + t7 * t12) + (t13 * ec16 + es16 * (t14 + t2 * t13)),
         p.W * (t7 * t11 - t6 * t12) + (t14 * ec16 - es16 * (p.c * t13 + t2 * t14)),
@@ -613,7 +613,7 @@ pub fn flow_3(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t13 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
     let t15 = v0 - p.W * (t4 * t12 - t5 * t11);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t8);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t8);
     [
         t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
         p.W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15)),
@@ -662,7 +662,7 @@ pub fn flow_1(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
     let t13 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
     let t15 = v0 - p.W * (t4 * t12 - t5 * t11);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t8);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t8);
     [
         t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
         p.W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15)),
@@ -712,7 +712,7 @@ pub fn flow_2(p: &Params, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {
         / p.c);
     let t14 = x0 - (t13 + (t4 * t11 + t5 * t12));
     let t15 = v0 - p.W * (t4 * t12 - t5 * t11);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t8);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t8);
     [
         t13 + (t6 * t11 + t7 * t12) + (t14 * ec16 + es16 * (t15 + t2 * t14)),
         p.W * (t6 * t12 - t7 * t11) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15)),
@@ -759,7 +759,7 @@ pub fn residual_1_11(
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t14 = p.V - p.W * (t9 * t11 - t8 * t12);
     let t15 = 1.0 / p.W * (phi1 - phi0);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t15);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t15);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
         -p.V + (p.W * (t4 * t9 - t5 * t8) + (t14 * ec16 - es16 * (p.c * t13 + t2 * t14))),
@@ -796,7 +796,7 @@ pub fn mapping_1_11(
     let t18 = x0 - (t11 + t16);
     let t19 = p.V - p.W * t17;
     let t20 = t6 * (phi1 - phi0);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t20);
+    let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t20);
     let t22 = t19 + t2 * t18;
     let t23 = p.c * t18 + t2 * t19;
     let t24 = t2 * es21;
@@ -851,7 +851,7 @@ pub fn residual_1_22(
     let t12 = phi0.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t14 = 1.0 / p.W * (phi1 - phi0);
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t14);
+    let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t14);
     let t16 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec15 + es15 * (t2 * t13 + t16))),
@@ -889,7 +889,7 @@ pub fn mapping_1_22(
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
     let t19 = t6 * (phi1 - phi0);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t19);
+    let (ec20, es20) = ::stickslip::model::homogeneous::general(t2, p.c, t19);
     let t21 = t2 * es20;
     let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t18 * t22;
@@ -946,7 +946,7 @@ pub fn residual_1_21(
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t14 = p.V - p.W * (t9 * t11 - t8 * t12);
     let t15 = 1.0 / p.W * (phi1 - phi0);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t15);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t15);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
         -p.V1
@@ -984,7 +984,7 @@ pub fn mapping_1_21(
     let t18 = x0 - (t11 + t16);
     let t19 = p.V - p.W * t17;
     let t20 = t6 * (phi1 - phi0);
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t20);
+    let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t20);
     let t22 = t19 + t2 * t18;
     let t23 = p.c * t18 + t2 * t19;
     let t24 = t2 * es21;
@@ -1039,7 +1039,7 @@ pub fn residual_1_12(
     let t12 = phi0.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t14 = 1.0 / p.W * (phi1 - phi0);
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t14);
+    let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t14);
     let t16 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec15 + es15 * (t2 * t13 + t16))),
@@ -1076,7 +1076,7 @@ pub fn mapping_1_12(
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
     let t19 = t6 * (phi1 - phi0);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t19);
+    let (ec20, es20) = ::stickslip::model::homogeneous::general(t2, p.c, t19);
     let t21 = t2 * es20;
     let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t18 * t22;
@@ -1134,7 +1134,7 @@ pub fn residual_2_22(
     let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t15 = p.V1 - p.W * (t9 * t11 - t8 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
         -p.V1
@@ -1173,7 +1173,7 @@ pub fn mapping_2_22(
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
     let t20 = p.V1 - p.W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
+    let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
     let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
@@ -1229,7 +1229,7 @@ pub fn residual_3_33(
     let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t15 = p.V2 - p.W * (t9 * t11 - t8 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
         -p.V2
@@ -1267,7 +1267,7 @@ pub fn mapping_3_33(
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
     let t20 = p.V2 - p.W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
+    let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
     let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
@@ -1322,7 +1322,7 @@ pub fn residual_3_11(
     let t12 = phi0.sin();
     let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     let t16 = p.V - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec15 + es15 * (t2 * t14 + t16))),
@@ -1359,7 +1359,7 @@ pub fn mapping_3_11(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t16);
+    let (ec20, es20) = ::stickslip::model::homogeneous::general(t2, p.c, t16);
     let t21 = t2 * es20;
     let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t19 * t22;
@@ -1416,7 +1416,7 @@ pub fn residual_3_13(
     let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t15 = p.V2 - p.W * (t9 * t11 - t8 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
         -p.V + (p.W * (t4 * t9 - t5 * t8) + (t15 * ec16 - es16 * (p.c * t14 + t2 * t15))),
@@ -1453,7 +1453,7 @@ pub fn mapping_3_13(
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
     let t20 = p.V2 - p.W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
+    let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
     let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
@@ -1508,7 +1508,7 @@ pub fn residual_3_31(
     let t12 = phi0.sin();
     let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let (ec15, es15) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     let t16 = p.V - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t14 * ec15 + es15 * (t2 * t14 + t16))),
@@ -1546,7 +1546,7 @@ pub fn mapping_3_31(
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
-    let (ec20, es20) = ::stickslip::homogeneous::general(t2, p.c, t16);
+    let (ec20, es20) = ::stickslip::model::homogeneous::general(t2, p.c, t16);
     let t21 = t2 * es20;
     let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
     let t23 = t19 * t22;
@@ -1603,7 +1603,7 @@ pub fn residual_4_33(
     let t13 = 1.0 / p.W * (phi1 - phi0);
     let t14 = x0 - (t8 + (t6 * t11 + t7 * t12));
     let t15 = p.V2 - p.W * (t7 * t11 - t6 * t12);
-    let (ec16, es16) = ::stickslip::homogeneous::general(t2, p.c, t13);
+    let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t8 + (t6 * t9 + t7 * t10) + (t14 * ec16 + es16 * (t15 + t2 * t14))),
         -p.V2
@@ -1641,7 +1641,7 @@ pub fn mapping_4_33(
     let t18 = t7 * t14 - t6 * t15;
     let t19 = x0 - (t8 + t17);
     let t20 = p.V2 - p.W * t18;
-    let (ec21, es21) = ::stickslip::homogeneous::general(t2, p.c, t16);
+    let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t16);
     let t22 = t20 + t2 * t19;
     let t23 = p.c * t19 + t2 * t20;
     let t24 = t2 * es21;
@@ -1819,10 +1819,10 @@ pub mod sweep_w {
         }
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::param::check_values(self, &INFO)?;
-            ::stickslip::param::check_conditions(
+            ::stickslip::model::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_conditions(
                 &INFO,
-                ::stickslip::param::Conditions {
+                ::stickslip::model::param::Conditions {
                     mass: 5.0,
                     stiffness: 30.0,
                     frequency: p.W,
@@ -2244,7 +2244,7 @@ pub mod sweep_w {
         let t9 = x0 - (0.13466666666666668 + (t3 * t5 + t4 * t6));
         let t10 = v0 - p.W * (t4 * t5 - t3 * t6);
         let t11 = (phi1 - phi0) / p.W;
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
             t11,
@@ -2292,7 +2292,7 @@ pub mod sweep_w {
         let t9 = t7 * (14.0 * t6);
         let t10 = x0 - (0.12866666666666668 + (t1 * t8 + t2 * t9));
         let t11 = v0 - p.W * (t1 * t9 - t2 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t5,
@@ -2338,7 +2338,7 @@ pub mod sweep_w {
         let t9 = t7 * (14.0 * t6);
         let t10 = x0 - (-0.1406666666666667 + (t1 * t8 + t2 * t9));
         let t11 = v0 - p.W * (t1 * t9 - t2 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t5,
@@ -2384,7 +2384,7 @@ pub mod sweep_w {
         let t9 = t7 * (14.0 * t6);
         let t10 = x0 - (-0.12266666666666669 + (t1 * t8 + t2 * t9));
         let t11 = v0 - p.W * (t1 * t9 - t2 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
             t5,
@@ -2427,7 +2427,7 @@ pub mod sweep_w {
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
         let t10 = 3.0 - p.W * (t6 * t7 - t5 * t8);
         let t11 = 1.0 / p.W * (phi1 - phi0);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t11,
@@ -2468,7 +2468,7 @@ pub mod sweep_w {
         let t14 = x0 - (-0.1406666666666667 + t12);
         let t15 = 3.0 - p.W * t13;
         let t16 = t3 * (phi1 - phi0);
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t16,
@@ -2523,7 +2523,7 @@ pub mod sweep_w {
         let t8 = phi0.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
         let t10 = 1.0 / p.W * (phi1 - phi0);
-        let (ec11, es11) = ::stickslip::homogeneous::underdamped(
+        let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t10,
@@ -2564,7 +2564,7 @@ pub mod sweep_w {
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
         let t15 = t3 * (phi1 - phi0);
-        let (ec16, es16) = ::stickslip::homogeneous::underdamped(
+        let (ec16, es16) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t15,
@@ -2621,7 +2621,7 @@ pub mod sweep_w {
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
         let t10 = 3.0 - p.W * (t6 * t7 - t5 * t8);
         let t11 = 1.0 / p.W * (phi1 - phi0);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t11,
@@ -2662,7 +2662,7 @@ pub mod sweep_w {
         let t14 = x0 - (-0.1406666666666667 + t12);
         let t15 = 3.0 - p.W * t13;
         let t16 = t3 * (phi1 - phi0);
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t16,
@@ -2717,7 +2717,7 @@ pub mod sweep_w {
         let t8 = phi0.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
         let t10 = 1.0 / p.W * (phi1 - phi0);
-        let (ec11, es11) = ::stickslip::homogeneous::underdamped(
+        let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t10,
@@ -2758,7 +2758,7 @@ pub mod sweep_w {
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
         let t15 = t3 * (phi1 - phi0);
-        let (ec16, es16) = ::stickslip::homogeneous::underdamped(
+        let (ec16, es16) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t15,
@@ -2815,7 +2815,7 @@ pub mod sweep_w {
         let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (-0.12266666666666669 + (t5 * t7 + t6 * t8));
         let t11 = 4.5 - p.W * (t6 * t7 - t5 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
             t9,
@@ -2856,7 +2856,7 @@ pub mod sweep_w {
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (-0.12266666666666669 + t13);
         let t16 = 4.5 - p.W * t14;
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
             t12,
@@ -2913,7 +2913,7 @@ pub mod sweep_w {
         let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let t11 = 1.5 - p.W * (t6 * t7 - t5 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t9,
@@ -2954,7 +2954,7 @@ pub mod sweep_w {
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
         let t16 = 1.5 - p.W * t14;
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t12,
@@ -3009,7 +3009,7 @@ pub mod sweep_w {
         let t8 = phi0.sin();
         let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
-        let (ec11, es11) = ::stickslip::homogeneous::underdamped(
+        let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t9,
@@ -3050,7 +3050,7 @@ pub mod sweep_w {
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
-        let (ec16, es16) = ::stickslip::homogeneous::underdamped(
+        let (ec16, es16) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t12,
@@ -3107,7 +3107,7 @@ pub mod sweep_w {
         let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let t11 = 1.5 - p.W * (t6 * t7 - t5 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t9,
@@ -3148,7 +3148,7 @@ pub mod sweep_w {
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
         let t16 = 1.5 - p.W * t14;
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t12,
@@ -3203,7 +3203,7 @@ pub mod sweep_w {
         let t8 = phi0.sin();
         let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
-        let (ec11, es11) = ::stickslip::homogeneous::underdamped(
+        let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t9,
@@ -3244,7 +3244,7 @@ pub mod sweep_w {
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
-        let (ec16, es16) = ::stickslip::homogeneous::underdamped(
+        let (ec16, es16) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t12,
@@ -3301,7 +3301,7 @@ pub mod sweep_w {
         let t9 = 1.0 / p.W * (phi1 - phi0);
         let t10 = x0 - (0.13466666666666668 + (t3 * t7 + t4 * t8));
         let t11 = 1.5 - p.W * (t4 * t7 - t3 * t8);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
             t9,
@@ -3342,7 +3342,7 @@ pub mod sweep_w {
         let t14 = t4 * t10 - t3 * t11;
         let t15 = x0 - (0.13466666666666668 + t13);
         let t16 = 1.5 - p.W * t14;
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
             t12,
@@ -3532,10 +3532,10 @@ pub mod reference {
         }
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::param::check_values(self, &INFO)?;
-            ::stickslip::param::check_conditions(
+            ::stickslip::model::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_conditions(
                 &INFO,
-                ::stickslip::param::Conditions {
+                ::stickslip::model::param::Conditions {
                     mass: 5.0,
                     stiffness: 30.0,
                     frequency: p.W,
@@ -3945,7 +3945,7 @@ pub mod reference {
         let t10 = x0 - (0.13466666666666668 + (t4 * t6 + t5 * t7));
         let t11 = v0 - p.W * (t5 * t6 - t4 * t7);
         let t12 = (phi1 - phi0) / p.W;
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
             t12,
@@ -3995,7 +3995,7 @@ pub mod reference {
         let t10 = t8 * (t0 * t7);
         let t11 = x0 - (0.12866666666666668 + (t2 * t9 + t3 * t10));
         let t12 = v0 - p.W * (t2 * t10 - t3 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t6,
@@ -4043,7 +4043,7 @@ pub mod reference {
         let t10 = t8 * (t0 * t7);
         let t11 = x0 - (-0.1406666666666667 + (t2 * t9 + t3 * t10));
         let t12 = v0 - p.W * (t2 * t10 - t3 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t6,
@@ -4091,7 +4091,7 @@ pub mod reference {
         let t10 = t8 * (t0 * t7);
         let t11 = x0 - (-0.12266666666666669 + (t2 * t9 + t3 * t10));
         let t12 = v0 - p.W * (t2 * t10 - t3 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
             t6,
@@ -4136,7 +4136,7 @@ pub mod reference {
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
         let t11 = 3.0 - p.W * (t7 * t8 - t6 * t9);
         let t12 = 1.0 / p.W * (phi1 - phi0);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t12,
@@ -4178,7 +4178,7 @@ pub mod reference {
         let t15 = x0 - (-0.1406666666666667 + t13);
         let t16 = 3.0 - p.W * t14;
         let t17 = t4 * (phi1 - phi0);
-        let (ec18, es18) = ::stickslip::homogeneous::underdamped(
+        let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t17,
@@ -4235,7 +4235,7 @@ pub mod reference {
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
         let t11 = 3.0 - p.W * (t7 * t8 - t6 * t9);
         let t12 = 1.0 / p.W * (phi1 - phi0);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t12,
@@ -4277,7 +4277,7 @@ pub mod reference {
         let t15 = x0 - (-0.1406666666666667 + t13);
         let t16 = 3.0 - p.W * t14;
         let t17 = t4 * (phi1 - phi0);
-        let (ec18, es18) = ::stickslip::homogeneous::underdamped(
+        let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t17,
@@ -4333,7 +4333,7 @@ pub mod reference {
         let t9 = phi0.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
         let t11 = 1.0 / p.W * (phi1 - phi0);
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t11,
@@ -4375,7 +4375,7 @@ pub mod reference {
         let t14 = t8 * t11 - t7 * t12;
         let t15 = x0 - (-0.1406666666666667 + t13);
         let t16 = t4 * (phi1 - phi0);
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
             t16,
@@ -4433,7 +4433,7 @@ pub mod reference {
         let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (-0.12266666666666669 + (t6 * t8 + t7 * t9));
         let t12 = 4.5 - p.W * (t7 * t8 - t6 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
             t10,
@@ -4475,7 +4475,7 @@ pub mod reference {
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (-0.12266666666666669 + t14);
         let t17 = 4.5 - p.W * t15;
-        let (ec18, es18) = ::stickslip::homogeneous::underdamped(
+        let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.11000000000000001,
             5.4761208898270315,
             t13,
@@ -4533,7 +4533,7 @@ pub mod reference {
         let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
         let t12 = 1.5 - p.W * (t7 * t8 - t6 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t10,
@@ -4575,7 +4575,7 @@ pub mod reference {
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
         let t17 = 1.5 - p.W * t15;
-        let (ec18, es18) = ::stickslip::homogeneous::underdamped(
+        let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t13,
@@ -4632,7 +4632,7 @@ pub mod reference {
         let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
         let t12 = 1.5 - p.W * (t7 * t8 - t6 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t10,
@@ -4674,7 +4674,7 @@ pub mod reference {
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
         let t17 = 1.5 - p.W * t15;
-        let (ec18, es18) = ::stickslip::homogeneous::underdamped(
+        let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t13,
@@ -4730,7 +4730,7 @@ pub mod reference {
         let t9 = phi0.sin();
         let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
-        let (ec12, es12) = ::stickslip::homogeneous::underdamped(
+        let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t10,
@@ -4772,7 +4772,7 @@ pub mod reference {
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
-        let (ec17, es17) = ::stickslip::homogeneous::underdamped(
+        let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.09,
             5.476486099681072,
             t13,
@@ -4830,7 +4830,7 @@ pub mod reference {
         let t10 = 1.0 / p.W * (phi1 - phi0);
         let t11 = x0 - (0.13466666666666668 + (t4 * t8 + t5 * t9));
         let t12 = 1.5 - p.W * (t5 * t8 - t4 * t9);
-        let (ec13, es13) = ::stickslip::homogeneous::underdamped(
+        let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
             t10,
@@ -4872,7 +4872,7 @@ pub mod reference {
         let t15 = t5 * t11 - t4 * t12;
         let t16 = x0 - (0.13466666666666668 + t14);
         let t17 = 1.5 - p.W * t15;
-        let (ec18, es18) = ::stickslip::homogeneous::underdamped(
+        let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.15000000000000002,
             5.4751712301991065,
             t13,

@@ -133,16 +133,16 @@ impl Writer<'_> {
         match (self.g.as_const(d), self.g.as_const(c)) {
             (Some(dv), Some(cv)) if dv * dv < cv => {
                 let (om, _) = literal((cv - dv * dv).sqrt());
-                quote!(::stickslip::homogeneous::underdamped(#dt, #om, #tt))
+                quote!(::stickslip::model::homogeneous::underdamped(#dt, #om, #tt))
             }
             (Some(dv), Some(cv)) if dv * dv > cv => {
                 let ct = self.expr(c).0;
-                quote!(::stickslip::homogeneous::overdamped(#dt, #ct, #tt))
+                quote!(::stickslip::model::homogeneous::overdamped(#dt, #ct, #tt))
             }
-            (Some(_), Some(_)) => quote!(::stickslip::homogeneous::critical(#dt, #tt)),
+            (Some(_), Some(_)) => quote!(::stickslip::model::homogeneous::critical(#dt, #tt)),
             _ => {
                 let ct = self.expr(c).0;
-                quote!(::stickslip::homogeneous::general(#dt, #ct, #tt))
+                quote!(::stickslip::model::homogeneous::general(#dt, #ct, #tt))
             }
         }
     }

@@ -146,9 +146,9 @@ fn check_tokens(
     quote! {
         fn check(&self) -> ::core::result::Result<(), ::stickslip::ParamError> {
             let p = self;
-            ::stickslip::param::check_values(self, &INFO)?;
+            ::stickslip::model::param::check_values(self, &INFO)?;
             #stmts
-            ::stickslip::param::check_conditions(&INFO, ::stickslip::param::Conditions {
+            ::stickslip::model::param::check_conditions(&INFO, ::stickslip::model::param::Conditions {
                 mass: #mass,
                 stiffness: #stiffness,
                 frequency: #frequency,

@@ -49,7 +49,7 @@ pub(super) fn smooth_items(e: &SmoothEquations) -> TokenStream {
         };
 
         /// Static description of the law.
-        pub static SMOOTH_INFO: ::stickslip::smooth::SmoothInfo = ::stickslip::smooth::SmoothInfo {
+        pub static SMOOTH_INFO: ::stickslip::model::smooth::SmoothInfo = ::stickslip::model::smooth::SmoothInfo {
             name: #name,
             doc: #docs,
             params: INFO.params,
@@ -62,9 +62,9 @@ pub(super) fn smooth_items(e: &SmoothEquations) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #type_ident;
 
-        impl ::stickslip::smooth::SmoothModel for #type_ident {
+        impl ::stickslip::model::smooth::SmoothModel for #type_ident {
             type Params = Params;
-            const INFO: &'static ::stickslip::smooth::SmoothInfo = &SMOOTH_INFO;
+            const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &SMOOTH_INFO;
             #[inline]
             fn oscillator(p: &Params) -> ::stickslip::Oscillator {
                 #ostmts

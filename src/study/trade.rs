@@ -8,12 +8,12 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::attractor::{self, Attractor, AttractorOptions};
-use crate::integrate::{Integrator, Side, State};
+use crate::dynamics::integrate::{Integrator, Side, State};
+use crate::dynamics::simulate::{Location, Segment, SimOptions, Simulator};
+use crate::model::param::ParamSet;
+use crate::model::smooth::{SmoothModel, SmoothVisitor};
 use crate::model::{MappingKind, Model, ModelVisitor};
-use crate::param::ParamSet;
-use crate::simulate::{Location, Segment, SimOptions, Simulator};
-use crate::smooth::{SmoothModel, SmoothVisitor};
+use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

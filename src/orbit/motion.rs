@@ -3,13 +3,13 @@
 
 use nalgebra::Matrix2;
 
-use crate::admissible::{violations, Violation};
+use crate::dynamics::simulate::{SimError, Simulator};
+use crate::model::param::ParamError;
 use crate::model::Model;
-use crate::param::ParamError;
-use crate::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
-use crate::simulate::{SimError, Simulator};
-use crate::stability::Stability;
-use crate::structure::{Structure, StructureError};
+use crate::orbit::admissible::{violations, Violation};
+use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
+use crate::orbit::stability::Stability;
+use crate::orbit::structure::{Structure, StructureError};
 
 /// A solution of the mapping equations of a structure, with everything known about it.
 #[derive(Clone, Debug, PartialEq)]
@@ -84,7 +84,7 @@ pub enum OrbitError {
         undamped: bool,
     },
     /// The simulation settled on a cycle through more mappings than the
-    /// search looks for ([`crate::attractor::AttractorOptions::max_cycle`]).
+    /// search looks for ([`crate::orbit::attractor::AttractorOptions::max_cycle`]).
     #[error("the cycle is longer than {cap} mappings")]
     CycleTooLong {
         /// The cap, in mappings.
@@ -139,7 +139,7 @@ pub fn solve_with<M: Model>(
         // useless, yet solutions nearby. Kept only if `DP` has the eigenvalue 1.
         let mut family = guess;
         if let Some((iterations, residual)) =
-            crate::family::solve_min_norm(&solver, sim.params(), &mut family, opts)
+            crate::orbit::family::solve_min_norm(&solver, sim.params(), &mut family, opts)
         {
             let neutral = solver
                 .poincare_jacobian(sim.params(), &family)

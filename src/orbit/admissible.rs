@@ -6,10 +6,10 @@
 
 use serde::Serialize;
 
+use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator};
 use crate::model::{MappingKind, Model, Side};
-use crate::periodic::SwitchingPoint;
-use crate::simulate::{EventKind, Location, Segment, Simulator};
-use crate::structure::Structure;
+use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::structure::Structure;
 
 /// Which condition of SPEC §6 a violation breaks; it names the transition a
 /// parameter sweep meets where the condition starts to fail.

@@ -16,15 +16,15 @@
 
 use serde::Serialize;
 
-use crate::admissible::{conditions, ViolationKind};
-use crate::attractor::{self, Attractor, AttractorOptions, NoMotion, PermanentStick};
+use crate::dynamics::simulate::{Location, Segment, SimOptions, Simulator};
+use crate::model::param::{ParamError, ParamSet};
 use crate::model::Model;
-use crate::motion::{solve, solve_with, Motion, OrbitError};
-use crate::param::{ParamError, ParamSet};
-use crate::periodic::{NewtonOptions, SwitchingPoint};
-use crate::simulate::{Location, Segment, SimOptions, Simulator};
-use crate::stability::Stability;
-use crate::structure::Structure;
+use crate::orbit::admissible::{conditions, ViolationKind};
+use crate::orbit::attractor::{self, Attractor, AttractorOptions, NoMotion, PermanentStick};
+use crate::orbit::motion::{solve, solve_with, Motion, OrbitError};
+use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use crate::orbit::stability::Stability;
+use crate::orbit::structure::Structure;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

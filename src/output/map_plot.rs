@@ -3,15 +3,15 @@
 //! borders between neighbouring cells with different sets, and a legend of
 //! the sets with their number of points. Points not (yet) computed are
 //! hatched grey. SVG or PNG by the file's extension; text in DejaVu Sans,
-//! compiled in like [`crate::plot`]'s.
+//! compiled in like [`crate::output::plot`]'s.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::collections::HashMap;
 use std::path::Path;
 
-use crate::map::{MapError, MapFile, PointResult};
-use crate::plot::{register, Format, FAMILY};
+use crate::output::plot::{register, Format, FAMILY};
+use crate::study::map::{MapError, MapFile, PointResult};
 
 const WIDTH: u32 = 1500;
 const HEIGHT: u32 = 900;

@@ -5,8 +5,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use crate::plot::{register, Format, FAMILY};
-use crate::trade::Trade;
+use crate::output::plot::{register, Format, FAMILY};
+use crate::study::trade::Trade;
 
 /// A text table of the trade.
 pub fn table(t: &Trade) -> String {

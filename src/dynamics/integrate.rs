@@ -15,8 +15,8 @@
 use nalgebra::{Matrix2, Vector2};
 use serde::Serialize;
 
-use crate::param::{ParamError, ParamSet};
-use crate::smooth::SmoothModel;
+use crate::model::param::{ParamError, ParamSet};
+use crate::model::smooth::SmoothModel;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

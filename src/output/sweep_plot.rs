@@ -8,8 +8,8 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::plot::{register, Format, FAMILY};
-use crate::sweep::{Sweep, TransitionKind};
+use crate::output::plot::{register, Format, FAMILY};
+use crate::study::sweep::{Sweep, TransitionKind};
 
 const PALETTE: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
@@ -83,7 +83,7 @@ fn draw<DB: DrawingBackend>(
     let colour = |s: &str| PALETTE[names.iter().position(|n| n == s).unwrap_or(0) % PALETTE.len()];
     let lo = sweep.points.first().map_or(0.0, |p| p.value);
     let hi = sweep.points.last().map_or(1.0, |p| p.value);
-    type Getter = fn(&crate::sweep::MotionSummary) -> Vec<f64>;
+    type Getter = fn(&crate::study::sweep::MotionSummary) -> Vec<f64>;
     let getters: [Getter; 4] = [
         |m| m.points.iter().map(|p| p.phase).collect(),
         |m| m.points.iter().map(|p| p.x).collect(),

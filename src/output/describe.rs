@@ -2,8 +2,8 @@
 
 use serde::Serialize;
 
+use crate::model::param::ParamSet;
 use crate::model::{Model, Regime};
-use crate::param::ParamSet;
 
 /// A domain at given parameters.
 #[derive(Clone, Debug, Serialize)]

@@ -1,42 +1,7 @@
 //! Run-time parameters: the generated `Params` structs implement [`ParamSet`];
 //! their validating checks report a typed [`ParamError`].
 
-use crate::model::ModelInfo;
-
-/// A comparison bound declared on a parameter in the model file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Bound {
-    /// `> b`
-    Gt,
-    /// `>= b`
-    Ge,
-    /// `< b`
-    Lt,
-    /// `<= b`
-    Le,
-}
-
-impl Bound {
-    /// Whether `value` satisfies `OP bound`.
-    pub fn holds(self, value: f64, bound: f64) -> bool {
-        match self {
-            Bound::Gt => value > bound,
-            Bound::Ge => value >= bound,
-            Bound::Lt => value < bound,
-            Bound::Le => value <= bound,
-        }
-    }
-
-    /// The operator as written.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            Bound::Gt => ">",
-            Bound::Ge => ">=",
-            Bound::Lt => "<",
-            Bound::Le => "<=",
-        }
-    }
-}
+use super::info::ModelInfo;
 
 /// Why a parameter set was rejected.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

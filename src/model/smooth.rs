@@ -6,8 +6,8 @@
 //! [`SmoothModel`]; each of its scenes with `pieces: N` generates an ordinary
 //! piecewise-linear [`crate::Model`] that interpolates the law.
 
-use crate::model::Oscillator;
-use crate::param::ParamSet;
+use super::oscillator::Oscillator;
+use super::param::ParamSet;
 
 /// Static description of a smooth-law model.
 #[derive(Clone, Copy, Debug)]

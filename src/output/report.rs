@@ -11,14 +11,14 @@ use std::fmt::{self, Write as _};
 use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
 
-use crate::admissible::Violation;
-use crate::attractor::{AutonomousCycle, NoMotion, PermanentStick};
+use crate::dynamics::simulate::{Location, Segment, SimError, Simulator};
+use crate::model::param::ParamSet;
 use crate::model::{MappingKind, Model};
-use crate::motion::Motion;
-use crate::param::ParamSet;
-use crate::periodic::{PeriodicSolver, Termination};
-use crate::simulate::{Location, Segment, SimError, Simulator};
-use crate::stability::{Classification, Stability};
+use crate::orbit::admissible::Violation;
+use crate::orbit::attractor::{AutonomousCycle, NoMotion, PermanentStick};
+use crate::orbit::motion::Motion;
+use crate::orbit::periodic::{PeriodicSolver, Termination};
+use crate::orbit::stability::{Classification, Stability};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

@@ -3,7 +3,7 @@
 //! Inside a domain the motion is the generated closed-form flow, always
 //! evaluated from the segment's start (no error accumulates along a
 //! segment). The next switching phase is the first root of `v − V_b` for the
-//! domain's two boundaries, located by [`crate::crossing::first_root`], whose
+//! domain's two boundaries, located by [`crate::dynamics::crossing::first_root`], whose
 //! step rule cannot miss a crossing: the bound it needs on `|v''|` comes from
 //! the linear ODE that the acceleration `a` and its rate `a'` satisfy in a
 //! domain, `(a, a')' = M (a, a') + (0, −A0 W² cos W t)` with
@@ -15,9 +15,9 @@
 
 use serde::Serialize;
 
-use crate::crossing::{first_root, touch_extremum, Probe, Root, RootKind};
+use crate::dynamics::crossing::{first_root, touch_extremum, Probe, Root, RootKind};
+use crate::model::param::{ParamError, ParamSet};
 use crate::model::{Coefficients, Model, Oscillator};
-use crate::param::{ParamError, ParamSet};
 
 /// Where the motion is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -416,7 +416,7 @@ impl<M: Model> Simulator<M> {
                 // the noise can change its sign there. Such a root is no arrival:
                 // an arrival on the upper boundary needs `a ≥ 0`, on the lower one
                 // `a ≤ 0`, and the acceleration there points back into the domain.
-                let departure = |r: &crate::crossing::Root| {
+                let departure = |r: &crate::dynamics::crossing::Root| {
                     let k = if r.which == 0 { info.lower } else { info.upper };
                     let left = k.is_some_and(|k| self.velocities[k] == seg.v);
                     let window = if r.kind == RootKind::Graze {
@@ -561,7 +561,7 @@ impl<M: Model> Simulator<M> {
                 } else {
                     None
                 };
-                let root = exit.map(|which| crate::crossing::Root {
+                let root = exit.map(|which| crate::dynamics::crossing::Root {
                     phase: seg.search_from,
                     which,
                     kind: RootKind::Crossing,

@@ -10,7 +10,7 @@
 use nalgebra::{Matrix2, Vector2};
 
 use crate::model::Model;
-use crate::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 
 /// Singular values of `I − DP` below this fraction of the largest are
 /// treated as zero (the null direction of the family).

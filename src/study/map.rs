@@ -44,14 +44,12 @@ use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
-use crate::attractor::{self, Attractor, AttractorOptions};
+use crate::dynamics::simulate::{SimOptions, Simulator};
+use crate::model::param::{ParamError, ParamSet};
 use crate::model::Model;
-use crate::motion::{Motion, OrbitError};
-use crate::param::{ParamError, ParamSet};
-use crate::periodic::Termination;
-use crate::simulate::{SimOptions, Simulator};
-
-pub use crate::map_plot::plot_map;
+use crate::orbit::attractor::{self, Attractor, AttractorOptions};
+use crate::orbit::motion::{Motion, OrbitError};
+use crate::orbit::periodic::Termination;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

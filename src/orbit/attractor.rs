@@ -3,11 +3,11 @@
 
 use serde::Serialize;
 
+use crate::dynamics::simulate::{Event, EventKind, Location, Segment, Simulator};
 use crate::model::{MappingKind, Model, ModelInfo, Side};
-use crate::motion::{solve, Motion, OrbitError};
-use crate::periodic::{NewtonOptions, SwitchingPoint};
-use crate::simulate::{Event, EventKind, Location, Segment, Simulator};
-use crate::structure::Structure;
+use crate::orbit::motion::{solve, Motion, OrbitError};
+use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use crate::orbit::structure::Structure;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

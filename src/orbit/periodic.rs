@@ -14,7 +14,7 @@ use nalgebra::{Matrix2, Vector2};
 use serde::Serialize;
 
 use crate::model::{MappingEval, Model};
-use crate::structure::Structure;
+use crate::orbit::structure::Structure;
 
 /// A switching point: the start of one mapping.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

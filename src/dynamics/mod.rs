@@ -1,0 +1,14 @@
+//! The dynamics layer: motion in time from a state.
+//!
+//! * [`crossing`] — the event search on a closed-form flow, which cannot miss
+//!   a crossing (Taylor exclusion with a Grönwall bound);
+//! * [`simulate`] — exact event-driven simulation of a piecewise-linear model
+//!   (flows, crossings, stick, grazing);
+//! * [`integrate`] — Dormand–Prince integration of a smooth friction law, with
+//!   belt-speed events and stick by force criteria.
+//!
+//! Depends only on [`crate::model`].
+
+pub mod crossing;
+pub mod integrate;
+pub mod simulate;

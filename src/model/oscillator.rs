@@ -1,0 +1,80 @@
+//! The oscillator's linear part and the effective coefficients of a domain,
+//! with its damping regime (SPEC §1, Eq. A.1).
+
+use serde::Serialize;
+
+/// Effective coefficients of one domain: `x'' + two_d x' + c x = A0 cos(W t) - b` (SPEC Eq. A.1).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Coefficients {
+    /// `2 d_j = 2 d + f_j'(v)`: effective damping (may be negative).
+    pub two_d: f64,
+    /// `c_j`.
+    pub c: f64,
+    /// `b_j = f_j(0)`, the constant part of the friction law.
+    pub b: f64,
+}
+
+impl Coefficients {
+    /// Returned for an out-of-range domain index.
+    pub const NAN: Self = Self {
+        two_d: f64::NAN,
+        c: f64::NAN,
+        b: f64::NAN,
+    };
+
+    /// Damping regime at these coefficients.
+    pub fn regime(&self) -> Regime {
+        Regime::classify(self.two_d, self.c)
+    }
+}
+
+/// The linear part of the oscillator: `x'' + 2 damping x' + stiffness x = amplitude cos(frequency t) - f(x')`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Oscillator {
+    /// `m`.
+    pub mass: f64,
+    /// `d`.
+    pub damping: f64,
+    /// `c`.
+    pub stiffness: f64,
+    /// `A0 = Q0 / m`.
+    pub amplitude: f64,
+    /// `W`.
+    pub frequency: f64,
+}
+
+/// Damping regime of a domain (sign of `d_j² - c_j`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Regime {
+    /// `d_j² < c_j`: damped oscillation (or growing, for negative damping).
+    Underdamped,
+    /// `d_j² = c_j`.
+    Critical,
+    /// `d_j² > c_j`: two real exponents.
+    Overdamped,
+}
+
+impl Regime {
+    /// The regime of `x'' + two_d x' + c x = 0`.
+    pub fn classify(two_d: f64, c: f64) -> Self {
+        let d = 0.5 * two_d;
+        let w2 = d * d - c;
+        if w2 < 0.0 {
+            Regime::Underdamped
+        } else if w2 > 0.0 {
+            Regime::Overdamped
+        } else {
+            Regime::Critical
+        }
+    }
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Regime::Underdamped => "underdamped",
+            Regime::Critical => "critical",
+            Regime::Overdamped => "overdamped",
+        }
+    }
+}

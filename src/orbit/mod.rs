@@ -1,0 +1,19 @@
+//! The orbit layer: periodic motions and what they are.
+//!
+//! * [`structure`] — mapping structures `P_{σm … σ1}` (SPEC §6);
+//! * [`periodic`] — Newton on the block-cyclic mapping system;
+//! * [`family`] — minimum-norm Newton onto a neutral family (DP has eigenvalue 1);
+//! * [`admissible`] — admissibility of a solved motion, with signed margins;
+//! * [`stability`] — the monodromy matrix and its eigenvalues;
+//! * [`motion`] — a solved, checked periodic motion;
+//! * [`attractor`] — what a simulation settles on: a motion, a stick, a family.
+//!
+//! Depends on [`crate::model`] and [`crate::dynamics`].
+
+pub mod admissible;
+pub mod attractor;
+pub mod family;
+pub mod motion;
+pub mod periodic;
+pub mod stability;
+pub mod structure;
