@@ -214,9 +214,9 @@ pub struct Generation {
 /// The model's own type.
 pub enum MainEquations {
     /// Affine domains.
-    Piecewise(Equations),
+    Piecewise(Box<Equations>),
     /// A smooth law.
-    Smooth(SmoothEquations),
+    Smooth(Box<SmoothEquations>),
 }
 
 /// The damping regime of a domain when it is known at build time.
@@ -304,8 +304,8 @@ pub struct SmoothEquations {
 /// Form the equations of every instance.
 pub fn build(expanded: Expanded) -> Result<Generation, Diagnostics> {
     let main = match expanded.main {
-        Main::Piecewise(i) => MainEquations::Piecewise(piecewise(i)?),
-        Main::Smooth(s) => MainEquations::Smooth(smooth(s)),
+        Main::Piecewise(i) => MainEquations::Piecewise(Box::new(piecewise(*i)?)),
+        Main::Smooth(s) => MainEquations::Smooth(Box::new(smooth(*s))),
     };
     let mut scenes = Vec::new();
     for s in expanded.scenes {

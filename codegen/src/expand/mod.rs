@@ -36,9 +36,9 @@ pub struct Expanded {
 /// The model's own type: piecewise (affine domains) or a smooth law.
 pub enum Main {
     /// A model of affine domains.
-    Piecewise(Instance),
+    Piecewise(Box<Instance>),
     /// A model with a smooth kinetic law.
-    Smooth(Smooth),
+    Smooth(Box<Smooth>),
 }
 
 /// The counts the `@generated` header states.
@@ -235,8 +235,8 @@ pub fn expand(model: &Model) -> Result<Expanded, Diagnostics> {
         return Err(diags);
     }
     let main = match &model.law {
-        Some(law) => Main::Smooth(smooth(model, law, params.clone(), &mut diags)),
-        None => Main::Piecewise(piecewise(model, None, &params, &mut diags)),
+        Some(law) => Main::Smooth(Box::new(smooth(model, law, params.clone(), &mut diags))),
+        None => Main::Piecewise(Box::new(piecewise(model, None, &params, &mut diags))),
     };
     let mut scenes = Vec::new();
     for ((s, sc), module) in model.scenes.iter().enumerate().zip(modules) {
