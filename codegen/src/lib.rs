@@ -3,7 +3,8 @@
 //! One pure library shared by the two drivers: stickslip's `build.rs` (model
 //! files under `models/`) and the `stickslip::model!` proc-macro (inline models
 //! or model files of your own crate). The generator is one pipeline,
-//! [`pipeline`], whose passes each take the previous one's typed output:
+//! `pipeline` (the first function below), whose passes each take the
+//! previous one's typed output:
 //!
 //! 1. **parse** ([`parse`]) — tokens → syntax tree (`syn`), collecting every
 //!    syntax error;

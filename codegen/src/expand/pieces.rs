@@ -1,5 +1,5 @@
-//! Smooth friction laws and the piecewise-linear models built from them at
-//! build time (issue 5, SPEC §12).
+//! The piecewise-linear models of a smooth friction law, built at build
+//! time for its `pieces: N` scenes (issue 5, SPEC §12).
 //!
 //! **Breakpoint rule.** On each side of the belt speed the law is
 //! interpolated linearly between breakpoints `|v − V| = 0 < u_1 < … < u_{k−1} < R`
@@ -12,7 +12,6 @@
 //! default parameters; the pieces' values are the law itself (symbolic in
 //! the parameters), so a piecewise model interpolates the law at any
 //! parameter values, at breakpoints placed for the defaults.
-
 //!
 //! **On the graph.** A piece's law is `f_a + (f_b - f_a) / (u_b - u_a) ·
 //! (±(v - V) - u_a)` with `f_a`, `f_b` the law lowered with `v` standing for
