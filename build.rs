@@ -5,7 +5,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use stickslip_codegen::registry;
+use stickslip_codegen::emit::registry;
 
 fn write_if_changed(path: &Path, content: &str) {
     if fs::read_to_string(path).ok().as_deref() != Some(content) {

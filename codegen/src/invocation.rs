@@ -6,7 +6,7 @@
 //!   invoking crate's `Cargo.toml`; errors point at the path literal and name
 //!   `file:line:col` in the message.
 //!
-//! Both expand to the module [`registry::module`] wraps, the one `build.rs`
+//! Both expand to the module [`registry::module`](crate::emit::registry::module) wraps, the one `build.rs`
 //! writes.
 
 use proc_macro2::{Span, TokenStream};
@@ -14,7 +14,8 @@ use quote::quote;
 use syn::parse::{Parse, ParseStream};
 use syn::{LitStr, Token};
 
-use crate::{registry, GeneratedFile, Options};
+use crate::emit::registry;
+use crate::{GeneratedFile, Options};
 
 enum Input {
     File(LitStr),

@@ -2,19 +2,30 @@
 //!
 //! One pure library shared by the two drivers: stickslip's `build.rs` (model
 //! files under `models/`) and the `stickslip::model!` proc-macro (inline models
-//! or model files of your own crate). The passes, in order:
+//! or model files of your own crate). The generator is one pipeline,
+//! `pipeline` (the first function below), whose passes each take the
+//! previous one's typed output:
 //!
-//! 1. [`parse`] — tokens → syntax tree (`syn`), collecting every syntax error;
-//! 2. [`check`] — syntax tree → checked [`model::Model`], every error located;
-//! 3. [`instance`] — a model with some parameters free → expression graph
-//!    ([`lower`] turns each model expression into [`expr`] nodes);
-//! 4. [`equations`] — the flows, mapping residuals, vector fields and force
-//!    criteria as graph nodes; exact derivatives by [`expr::Graph::diff`];
-//! 5. [`emit`] — straight-line Rust, formatted with `prettyplease`.
+//! 1. **parse** ([`parse`]) — tokens → syntax tree (`syn`), collecting every
+//!    syntax error;
+//! 2. **check** ([`check`], [`names`], [`law`]) — syntax tree → checked
+//!    [`model::Model`], every error located at `file:line:col`;
+//! 3. **expand** ([`expand`]) — checked model → one checked instance per
+//!    generated type (the model, each scene, each `pieces: N` model of a
+//!    smooth law, built and checked on the expression graph): its free
+//!    parameters, mappings, names and lowered graph ([`lowered`]; [`lower`]
+//!    turns each model expression into [`expr`] nodes);
+//! 4. **equations** ([`equations`]) — the flows, mapping residuals and
+//!    Jacobians, vector fields and force criteria of each instance as graph
+//!    nodes; exact derivatives by [`expr::Graph::diff`];
+//! 5. **emit** ([`emit`]) — equations → Rust tokens; pure, it cannot fail;
+//!    then formatted with `prettyplease`.
 //!
-//! Around the generated code, [`registry`] writes the module wrapper both
+//! Errors of passes 1–4 are [`Diagnostics`]; [`report`] renders them.
+//!
+//! Around the generated code, [`emit::registry`] writes the module wrapper both
 //! drivers use and `build.rs`'s catalogue of the compiled-in models;
-//! [`expand`] is all of the proc-macro but its token conversion.
+//! [`invocation`] is all of the proc-macro but its token conversion.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -27,14 +38,18 @@ pub mod emit;
 #[cfg(feature = "generator")]
 pub mod equations;
 #[cfg(feature = "generator")]
-pub mod invocation;
+pub mod expand;
 #[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod expr;
 #[cfg(feature = "generator")]
-pub mod instance;
+pub mod invocation;
+#[cfg(feature = "generator")]
+pub mod law;
 #[cfg(feature = "generator")]
 pub mod lower;
+#[cfg(feature = "generator")]
+pub mod lowered;
 #[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod model;
@@ -43,10 +58,6 @@ pub mod names;
 #[cfg(feature = "generator")]
 #[allow(missing_docs)]
 pub mod parse;
-#[cfg(feature = "generator")]
-pub mod pieces;
-#[cfg(feature = "generator")]
-pub mod registry;
 #[cfg(feature = "generator")]
 pub mod report;
 #[cfg(feature = "generator")]
@@ -68,19 +79,34 @@ pub use emit::Options;
 #[cfg(feature = "generator")]
 pub use report::{check_file, check_source, Located, Position, Report, Severity};
 
+/// The generator, pass by pass: `parse → check → expand → equations →
+/// emit`, then formatting. `file` is the stem of a model file, whose model
+/// must be named like it.
 #[cfg(feature = "generator")]
-pub use model::Model;
-
-/// Parse and check a model from tokens.
-#[cfg(feature = "generator")]
-pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
-    model_named(tokens, None)
+pub(crate) fn pipeline(
+    tokens: TokenStream,
+    options: &Options,
+    file: Option<&str>,
+) -> Result<GeneratedFile, Diagnostics> {
+    let ast = parse(tokens, file)?;
+    let model = check(ast)?;
+    let expanded = expand::expand(&model)?;
+    let generation = equations::build(expanded)?;
+    let tokens = emit::emit(&generation);
+    let code = emit::header(&generation.header, options) + &format(tokens)?;
+    Ok(GeneratedFile {
+        instances: instance_names(&model),
+        doc: model.docs.join("\n"),
+        module: names::ident_text(&model.name).unwrap_or_else(|| model.name.clone()),
+        name: names::bare(&model.name).to_string(),
+        code,
+    })
 }
 
-/// [`model_from_tokens`]; with `file`, the model must be named like it
+/// Pass 1: the syntax tree; with `file`, the model must be named like it
 /// (`models/NAME.ssm` holds `model NAME`), else an error at the name.
 #[cfg(feature = "generator")]
-fn model_named(tokens: TokenStream, file: Option<&str>) -> Result<Model, Diagnostics> {
+fn parse(tokens: TokenStream, file: Option<&str>) -> Result<parse::ModelAst, Diagnostics> {
     let mut diags = Diagnostics::new();
     let ast = parse::parse_model(tokens, &mut diags);
     if let (Some(ast), Some(stem)) = (&ast, file) {
@@ -95,15 +121,53 @@ fn model_named(tokens: TokenStream, file: Option<&str>) -> Result<Model, Diagnos
             );
         }
     }
-    if !diags.is_empty() {
-        return Err(diags);
+    match ast {
+        Some(ast) if diags.is_empty() => Ok(ast),
+        _ => Err(diags),
     }
-    let Some(ast) = ast else { return Err(diags) };
+}
+
+/// Pass 2: the checked model.
+#[cfg(feature = "generator")]
+fn check(ast: parse::ModelAst) -> Result<Model, Diagnostics> {
+    let mut diags = Diagnostics::new();
     names::check(&ast, &mut diags);
     match check::check(ast, &mut diags) {
         Some(m) if diags.is_empty() => Ok(m),
         _ => Err(diags),
     }
+}
+
+/// The emitted tokens, formatted. They always parse; should they not, the
+/// error says so rather than panic.
+#[cfg(feature = "generator")]
+fn format(tokens: TokenStream) -> Result<String, Diagnostics> {
+    match syn::parse2::<syn::File>(tokens) {
+        Ok(file) => Ok(prettyplease::unparse(&file)),
+        Err(e) => {
+            let mut d = Diagnostics::new();
+            d.error(
+                proc_macro2::Span::call_site(),
+                format!("internal: generated code does not parse: {e}"),
+            );
+            Err(d)
+        }
+    }
+}
+
+#[cfg(feature = "generator")]
+pub use model::Model;
+
+/// Parse and check a model from tokens.
+#[cfg(feature = "generator")]
+pub fn model_from_tokens(tokens: TokenStream) -> Result<Model, Diagnostics> {
+    model_named(tokens, None)
+}
+
+/// [`model_from_tokens`]; with `file`, the model must be named like it.
+#[cfg(feature = "generator")]
+fn model_named(tokens: TokenStream, file: Option<&str>) -> Result<Model, Diagnostics> {
+    check(parse(tokens, file)?)
 }
 
 /// Generate the Rust module body for the model in `tokens`.
@@ -118,18 +182,7 @@ pub(crate) fn generate_named(
     options: &Options,
     file: Option<&str>,
 ) -> Result<GeneratedFile, Diagnostics> {
-    let model = model_named(tokens, file)?;
-    let mut diags = Diagnostics::new();
-    match emit::emit(&model, options, &mut diags) {
-        Some(code) if diags.is_empty() => Ok(GeneratedFile {
-            instances: instance_names(&model),
-            doc: model.docs.join("\n"),
-            module: names::ident_text(&model.name).unwrap_or_else(|| model.name.clone()),
-            name: names::bare(&model.name).to_string(),
-            code,
-        }),
-        _ => Err(diags),
-    }
+    pipeline(tokens, options, file)
 }
 
 /// Tokenize model source text. Outside a proc-macro (build scripts, tests)

@@ -17,10 +17,43 @@ use crate::expr::{Graph, Id};
 pub struct Scope<'a> {
     /// Names of parameters and derived quantities.
     pub names: &'a HashMap<String, Id>,
-    /// The node standing for `v`, inside a friction law.
-    pub velocity: Option<Id>,
+    /// What `v` stands for, inside a friction law.
+    pub velocity: Option<Velocity>,
     /// What the expression is, for messages ("a parameter default").
     pub context: &'a str,
+}
+
+/// What `v` stands for while lowering a friction law.
+#[derive(Clone, Copy, Debug)]
+pub enum Velocity {
+    /// A node (usually the variable [`crate::lowered::LAW_V`]).
+    Node(Id),
+    /// `base + offset` (`base - |offset|` for a negative one), made where `v`
+    /// is met: the law evaluated at a shifted velocity such as a breakpoint
+    /// `V ± u` of a piecewise-linear model.
+    Offset {
+        /// The node shifted (the belt speed).
+        base: Id,
+        /// The shift, a number.
+        offset: f64,
+    },
+}
+
+impl Velocity {
+    /// The node `v` stands for, made in `graph` if it is not there yet.
+    pub fn node(self, graph: &mut Graph) -> Id {
+        match self {
+            Velocity::Node(id) => id,
+            Velocity::Offset { base, offset } if offset < 0.0 => {
+                let u = graph.constant(-offset);
+                graph.sub(base, u)
+            }
+            Velocity::Offset { base, offset } => {
+                let u = graph.constant(offset);
+                graph.add(base, u)
+            }
+        }
+    }
 }
 
 /// Lower `expr` into `graph`. Errors go to `diags`; the result is then a
@@ -169,7 +202,7 @@ fn lower_node(
             let name = ident.to_string();
             if name == "v" {
                 if let Some(v) = scope.velocity {
-                    return v;
+                    return v.node(graph);
                 }
                 diags.error(
                     ident.span(),

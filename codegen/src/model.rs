@@ -67,6 +67,17 @@ pub struct Domain {
     pub span: Span,
 }
 
+/// A domain's place in the topology: its label and edges.
+#[derive(Clone, Copy, Debug)]
+pub struct Band {
+    /// The domain's label.
+    pub label: u32,
+    /// Index of the lower edge (`None`: unbounded).
+    pub lower: Option<usize>,
+    /// Index of the upper edge (`None`: unbounded).
+    pub upper: Option<usize>,
+}
+
 /// Kind of a mapping (SPEC §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MappingKind {
@@ -147,6 +158,21 @@ impl Model {
         self.boundaries.iter().position(|b| b.stick.is_some())
     }
 
+    /// Every mapping this model's topology allows.
+    pub fn all_mappings(&self) -> Vec<Mapping> {
+        let numbers: Vec<u32> = self.boundaries.iter().map(|b| b.number).collect();
+        let bands: Vec<Band> = self
+            .domains
+            .iter()
+            .map(|d| Band {
+                label: d.label,
+                lower: d.lower,
+                upper: d.upper,
+            })
+            .collect();
+        Self::topology_mappings(&numbers, self.stick_boundary(), &bands)
+    }
+
     /// The domain just above boundary `k` and just below it.
     pub fn sides(&self, k: usize) -> (usize, usize) {
         // Domains are sorted; domain i lies between boundaries i-1 and i.
@@ -165,14 +191,20 @@ impl Model {
 
     /// Every mapping the topology allows: per domain, the local mappings on
     /// each of its edges and the global mappings across it; the stick mapping
-    /// on the stick boundary.
-    pub fn topology_mappings(boundaries: &[Boundary], domains: &[Domain]) -> Vec<Mapping> {
+    /// on the stick boundary. `numbers` are the boundaries' numbers, `stick`
+    /// the stick boundary's index, `bands` each domain's label, lower and
+    /// upper edge.
+    pub fn topology_mappings(
+        numbers: &[u32],
+        stick: Option<usize>,
+        bands: &[Band],
+    ) -> Vec<Mapping> {
         let mut out = Vec::new();
-        let mut order: Vec<usize> = (0..domains.len()).collect();
-        order.sort_by_key(|&i| domains[i].label);
+        let mut order: Vec<usize> = (0..bands.len()).collect();
+        order.sort_by_key(|&i| bands[i].label);
         for i in order {
-            let d = &domains[i];
-            let num = |k: usize| boundaries[k].number;
+            let d = &bands[i];
+            let num = |k: usize| numbers[k];
             let mut push = |from: usize, to: usize, kind| {
                 out.push(Mapping {
                     name: Self::mapping_name(d.label, num(to), num(from)),
@@ -193,8 +225,8 @@ impl Model {
                 push(hi, lo, MappingKind::Global);
             }
         }
-        if let Some(s) = boundaries.iter().position(|b| b.stick.is_some()) {
-            let n = boundaries[s].number;
+        if let Some(s) = stick {
+            let n = numbers[s];
             out.push(Mapping {
                 name: Self::mapping_name(0, n, n),
                 domain: None,

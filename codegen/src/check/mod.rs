@@ -30,10 +30,18 @@ use syn::Expr;
 
 use crate::diagnostic::{num, Diagnostics};
 use crate::expr::Graph;
-use crate::instance::{lower_instance, Instance, LAW_V};
 use crate::lower::{lower, Scope};
-use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param, Scene};
+use crate::lowered::{lower_instance, Lowered, LAW_V};
+use crate::model::{BoundOp, Boundary, Derived, Domain, Model, Oscillator, Param};
 use crate::parse::{Item, ModelAst};
+
+mod continuity;
+mod scene;
+
+use continuity::{check_continuity, check_static_bound};
+pub use continuity::{check_pieces, Edge, Piecewise};
+use scene::check_scene;
+pub use scene::parse_structure;
 
 /// Check a parsed model. Returns `None` when any error was found.
 pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
@@ -221,7 +229,7 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
         if diags.len() > errors_before {
             return None;
         }
-        crate::pieces::check_smooth(&model, diags);
+        crate::law::check_smooth(&model, diags);
         model.scenes = scene_asts
             .into_iter()
             .filter_map(|s| check_scene(&model, s, diags))
@@ -333,11 +341,12 @@ pub fn check(ast: ModelAst, diags: &mut Diagnostics) -> Option<Model> {
     if lowered && affine {
         // Boundaries and domains are now sorted: lower again in that order.
         let symbolic = lower_instance(&model, &all, &mut Diagnostics::new());
-        check_continuity(&model, &symbolic, diags);
-        check_static_bound(&model, &symbolic, diags);
+        let view = Piecewise::of(&model);
+        check_continuity(&view, &symbolic, diags);
+        check_static_bound(&view, &symbolic, diags);
     }
 
-    model.mappings = Model::topology_mappings(&model.boundaries, &model.domains);
+    model.mappings = model.all_mappings();
     model.scenes = scene_asts
         .into_iter()
         .filter_map(|s| check_scene(&model, s, diags))
@@ -420,80 +429,22 @@ fn constant(
     }
 }
 
-/// The checks of a generated piecewise-linear model: affine laws, continuity
-/// away from the stick boundary, static bound above the kinetic levels.
-pub fn check_pieces(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
-    for (j, dm) in model.domains.iter().enumerate() {
-        check_affine(inst, dm, j, diags);
-    }
-    check_continuity(model, inst, diags);
-    check_static_bound(model, inst, diags);
-}
-
 fn check_law(l: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<crate::model::Law> {
-    const KEYS: [&str; 4] = ["belt", "stick", "range", "kinetic"];
-    let mut found: [Option<Expr>; 4] = Default::default();
-    for (key, value) in l.fields {
-        let k = key.to_string();
-        match KEYS.iter().position(|&x| x == k) {
-            Some(i) if found[i].is_some() => {
-                diags.error(key.span(), format!("`{k}` is given twice"))
-            }
-            Some(i) => found[i] = Some(value),
-            None => diags.error(
-                key.span(),
-                format!("unknown law field `{k}`; expected belt, stick, range, kinetic"),
-            ),
-        }
-    }
-    let missing: Vec<&str> = KEYS
-        .iter()
-        .zip(&found)
-        .filter(|(_, f)| f.is_none())
-        .map(|(k, _)| *k)
-        .collect();
-    if !missing.is_empty() {
-        diags.error(l.span, format!("the law lacks {}", missing.join(", ")));
-        return None;
-    }
-    let [belt, stick, range, kinetic] = found.map(|f| f.expect("checked above"));
+    let span = l.span;
+    let [belt, stick, range, kinetic] =
+        fields(l, ["belt", "stick", "range", "kinetic"], "law", diags)?;
     Some(crate::model::Law {
         belt,
         stick,
         range,
         kinetic,
-        span: l.span,
+        span,
     })
 }
 
 fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> Option<Oscillator> {
     const KEYS: [&str; 5] = ["mass", "damping", "stiffness", "forcing", "frequency"];
-    let mut found: [Option<Expr>; 5] = Default::default();
-    for (key, value) in o.fields {
-        let k = key.to_string();
-        match KEYS.iter().position(|&x| x == k) {
-            Some(i) if found[i].is_some() => diags.error(key.span(), format!("`{k}` is given twice")),
-            Some(i) => found[i] = Some(value),
-            None => diags.error(
-                key.span(),
-                format!("unknown oscillator field `{k}`; expected mass, damping, stiffness, forcing, frequency"),
-            ),
-        }
-    }
-    let missing: Vec<&str> = KEYS
-        .iter()
-        .zip(&found)
-        .filter(|(_, f)| f.is_none())
-        .map(|(k, _)| *k)
-        .collect();
-    if !missing.is_empty() {
-        diags.error(
-            o.span,
-            format!("the oscillator lacks {}", missing.join(", ")),
-        );
-        return None;
-    }
-    let [mass, damping, stiffness, forcing, frequency] = found.map(|f| f.expect("checked above"));
+    let [mass, damping, stiffness, forcing, frequency] = fields(o, KEYS, "oscillator", diags)?;
     Some(Oscillator {
         mass,
         damping,
@@ -503,7 +454,46 @@ fn check_oscillator(o: crate::parse::OscillatorAst, diags: &mut Diagnostics) -> 
     })
 }
 
-fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
+/// The fields `keys` of a `what { key: expr, ... }` block, each exactly
+/// once; an unknown, repeated or missing field is an error.
+fn fields<const N: usize>(
+    block: crate::parse::OscillatorAst,
+    keys: [&str; N],
+    what: &str,
+    diags: &mut Diagnostics,
+) -> Option<[Expr; N]> {
+    let mut found: [Option<Expr>; N] = std::array::from_fn(|_| None);
+    for (key, value) in block.fields {
+        let k = key.to_string();
+        match keys.iter().position(|&x| x == k) {
+            Some(i) if found[i].is_some() => {
+                diags.error(key.span(), format!("`{k}` is given twice"))
+            }
+            Some(i) => found[i] = Some(value),
+            None => diags.error(
+                key.span(),
+                format!("unknown {what} field `{k}`; expected {}", keys.join(", ")),
+            ),
+        }
+    }
+    let missing: Vec<&str> = keys
+        .iter()
+        .zip(&found)
+        .filter(|(_, f)| f.is_none())
+        .map(|(k, _)| *k)
+        .collect();
+    if !missing.is_empty() {
+        diags.error(
+            block.span,
+            format!("the {what} lacks {}", missing.join(", ")),
+        );
+        return None;
+    }
+    let all: Vec<Expr> = found.into_iter().collect::<Option<_>>()?;
+    all.try_into().ok()
+}
+
+fn check_positive(model: &Model, inst: &Lowered, diags: &mut Diagnostics) {
     let o = &model.oscillator;
     for (what, id, e) in [
         ("mass", inst.mass, &o.mass),
@@ -525,7 +515,7 @@ fn check_positive(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
 }
 
 /// Sort boundaries by velocity at the defaults, and remap the domains.
-fn sort_boundaries(model: &mut Model, inst: &Instance, diags: &mut Diagnostics) {
+fn sort_boundaries(model: &mut Model, inst: &Lowered, diags: &mut Diagnostics) {
     let vel: Vec<f64> = inst
         .boundary_velocity
         .iter()
@@ -655,7 +645,7 @@ fn check_bands(model: &mut Model, model_span: Span, diags: &mut Diagnostics) {
     }
 }
 
-fn check_affine(inst: &Instance, dm: &Domain, j: usize, diags: &mut Diagnostics) {
+fn check_affine(inst: &Lowered, dm: &Domain, j: usize, diags: &mut Diagnostics) {
     let mut g = inst.graph.clone();
     let law = inst.domains[j].law;
     if is_affine(&mut g, law) {
@@ -718,7 +708,7 @@ fn offending_term<'e>(
             sub,
             &Scope {
                 names,
-                velocity: Some(v),
+                velocity: Some(crate::lower::Velocity::Node(v)),
                 context: "",
             },
             &mut Diagnostics::new(),
@@ -738,217 +728,4 @@ fn offending_term<'e>(
         }
     }
     e
-}
-
-/// Deterministic pseudo-random numbers in [-1, 1] (no dependency needed for 16 draws).
-fn perturbations(n: usize, trials: usize) -> Vec<Vec<f64>> {
-    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
-    (0..trials)
-        .map(|_| {
-            (0..n)
-                .map(|_| {
-                    state = state
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-                })
-                .collect()
-        })
-        .collect()
-}
-
-/// The defaults moved by the draws `t` in [-1, 1], each kept inside its
-/// parameter's bounds: a value outside them is pulled back towards the
-/// default (which satisfies them) by halving the step. The continuity check
-/// must only try valid parameter values: a Stribeck law `exp(-|v - V| / vs)`
-/// with `vs` pushed below zero is not a law of the model at all.
-fn perturbed(model: &Model, defaults: &[f64], t: &[f64]) -> Vec<f64> {
-    defaults
-        .iter()
-        .zip(t)
-        .zip(&model.params)
-        .map(|((&d, &u), p)| {
-            let mut step = d * 0.3 * u + 0.1 * u;
-            for _ in 0..60 {
-                let x = d + step;
-                if p.bounds.iter().all(|&(op, b)| satisfies(x, op, b)) {
-                    return x;
-                }
-                step *= 0.5;
-            }
-            d
-        })
-        .collect()
-}
-
-fn check_continuity(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
-    let mut g = inst.graph.clone();
-    let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
-    let trials = perturbations(defaults.len(), 16);
-    for (k, b) in model.boundaries.iter().enumerate() {
-        if b.stick.is_some() {
-            continue;
-        }
-        let (above, below) = model.sides(k);
-        let vk = inst.boundary_velocity[k];
-        let fa = g.substitute(inst.domains[above].law, LAW_V, vk);
-        let fb = g.substitute(inst.domains[below].law, LAW_V, vk);
-        let jump = g.sub(fa, fb);
-        if g.as_const(jump) == Some(0.0) {
-            continue; // symbolically continuous
-        }
-        let (la, lb) = (model.domains[above].label, model.domains[below].label);
-        let at_defaults = g.eval(jump, &defaults, &[]);
-        let scale = 1.0 + g.eval(fa, &defaults, &[]).abs();
-        // NaN (a law undefined at the boundary) is a jump too.
-        if at_defaults.is_nan() || at_defaults.abs() > 1e-12 * scale {
-            diags.error(
-                b.span,
-                format!(
-                    "kinetic friction jumps at `{}` (domain {lb} gives {}, domain {la} gives {}), but `{}` is not a stick boundary: \
-                     make the laws meet there or declare `stick BOUND`",
-                    b.label,
-                    num(g.eval(fb, &defaults, &[])),
-                    num(g.eval(fa, &defaults, &[])),
-                    b.label
-                ),
-            );
-            continue;
-        }
-        for t in &trials {
-            let p = perturbed(model, &defaults, t);
-            let jv = g.eval(jump, &p, &[]);
-            let sc = 1.0 + g.eval(fa, &p, &[]).abs();
-            if jv.abs() > 1e-9 * sc {
-                diags.error(
-                    b.span,
-                    format!(
-                        "kinetic friction is continuous at `{}` only for the default parameter values: \
-                         domains {lb} and {la} do not meet there for other values",
-                        b.label
-                    ),
-                );
-                break;
-            }
-        }
-    }
-}
-
-fn check_static_bound(model: &Model, inst: &Instance, diags: &mut Diagnostics) {
-    let Some(k) = model.stick_boundary() else {
-        return;
-    };
-    let Some(bound) = inst.static_bound else {
-        return;
-    };
-    let b = &model.boundaries[k];
-    let mut g = inst.graph.clone();
-    let defaults: Vec<f64> = model.params.iter().map(|p| p.default).collect();
-    let s = g.eval(bound, &defaults, &[]);
-    let (above, below) = model.sides(k);
-    let vk = inst.boundary_velocity[k];
-    for (j, sign, side) in [(above, 1.0, "above"), (below, -1.0, "below")] {
-        let f = g.substitute(inst.domains[j].law, LAW_V, vk);
-        let level = sign * g.eval(f, &defaults, &[]);
-        if s.is_nan() || s < level.abs() - 1e-12 * (1.0 + level.abs()) {
-            let e = b.stick.as_ref().expect("stick boundary");
-            diags.error(
-                e.span(),
-                format!(
-                    "the static bound `{}` = {} is below the kinetic friction level {} {side} `{}` (domain {}): \
-                     static friction must be at least kinetic",
-                    e.to_token_stream(),
-                    num(s),
-                    num(level.abs()),
-                    b.label,
-                    model.domains[j].label
-                ),
-            );
-        }
-    }
-}
-
-fn check_scene(model: &Model, s: crate::parse::SceneAst, diags: &mut Diagnostics) -> Option<Scene> {
-    let before = diags.len();
-    let mut free = Vec::new();
-    for name in &s.free {
-        let n = name.to_string();
-        match model.params.iter().position(|p| p.name == n) {
-            Some(i) if free.contains(&i) => {
-                diags.error(name.span(), format!("`{n}` is freed twice"))
-            }
-            Some(i) => free.push(i),
-            None if model.derived.iter().any(|d| d.name == n) => diags.error(
-                name.span(),
-                format!("`{n}` is a derived quantity; free the parameters it is computed from"),
-            ),
-            None => diags.error(name.span(), format!("unknown parameter `{n}`")),
-        }
-    }
-    free.sort_unstable();
-    let mut structures = Vec::new();
-    let mut texts = Vec::new();
-    for lit in &s.structures {
-        match parse_structure(model, &lit.value()) {
-            Ok(st) => {
-                structures.push(st);
-                texts.push(lit.value());
-            }
-            Err(msg) => diags.error(lit.span(), msg),
-        }
-    }
-    let pieces = match &s.pieces {
-        None if model.law.is_some() => {
-            diags.error(
-                s.name.span(),
-                "a scene of a model with a smooth `law` needs `pieces: N;`",
-            );
-            None
-        }
-        None => None,
-        Some(lit) if model.law.is_none() => {
-            diags.error(
-                lit.span(),
-                "`pieces` builds a piecewise-linear model from a smooth `law`; this model has none",
-            );
-            None
-        }
-        Some(lit) => match lit.base10_parse::<u32>() {
-            Ok(n) if (2..=128).contains(&n) && n % 2 == 0 => Some(n),
-            _ => {
-                diags.error(lit.span(), "`pieces` is an even number from 2 to 128 (half on each side of the belt speed)");
-                None
-            }
-        },
-    };
-    (diags.len() == before).then(|| Scene {
-        name: s.name.to_string(),
-        docs: s.docs,
-        free,
-        structures,
-        structure_text: texts,
-        pieces,
-    })
-}
-
-/// Parse `P_{3_31 0_11 3_13 4_33}` (or `P{..}`, or the names alone) into
-/// mapping indices as written (the last one is applied first), by the
-/// grammar the runtime uses ([`crate::structure`]): each mapping ends on the
-/// boundary where the next one starts, and a stick mapping is followed by a
-/// mapping into a domain.
-pub fn parse_structure(model: &Model, text: &str) -> Result<Vec<usize>, String> {
-    let views: Vec<crate::structure::MappingView> = model
-        .mappings
-        .iter()
-        .map(|m| crate::structure::MappingView {
-            name: &m.name,
-            from: m.from,
-            to: m.to,
-            domain_above_from: m.domain.map(|j| model.domains[j].lower == Some(m.from)),
-        })
-        .collect();
-    let labels: Vec<&str> = model.boundaries.iter().map(|b| b.label.as_str()).collect();
-    let applied =
-        crate::structure::parse(&model.name, &views, &labels, text).map_err(|e| e.to_string())?;
-    Ok(applied.iter().rev().map(|&(i, _)| i).collect())
 }
