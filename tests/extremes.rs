@@ -54,7 +54,7 @@
 mod common;
 
 use common::events::PiecewiseOde;
-use common::graze::{band, near_graze, BAND_SIDES};
+use common::graze::{near_graze, BAND_SIDES};
 use common::reference::segment_for;
 use common::taylor::Ode;
 

@@ -12,12 +12,11 @@
 mod common;
 
 use common::reference::{references, segment_for};
-use stickslip::dynamics::simulate::{Event, EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::models::paper::{Paper, Params};
+use stickslip::dynamics::simulate::{Event, EventKind, Segment};
+use stickslip::models::paper::Paper;
 use stickslip::orbit::attractor::mapping_between;
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -155,7 +154,6 @@ fn simulation_from_a_newton_solution_returns_to_it() {
 /// bounded by the first cycle's).
 #[test]
 fn ten_cycles_stay_on_the_solution() {
-    let info = Paper::INFO;
     for r in references() {
         let sim = r.simulator();
         let structure = r.structure();

@@ -8,7 +8,6 @@
 mod common;
 
 use common::{accepted, edit, errors, generate};
-use stickslip_codegen::GeneratedFile;
 
 /// Line numbers: 1 `model`, 2..=16 params, 17 `let`, 18..=24 oscillator,
 /// 25..=27 boundaries, 28..=31 domains (2, 1, 3, 4), 32 `}`.

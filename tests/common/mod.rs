@@ -13,9 +13,11 @@
 //! * `taylor`: a Taylor-series integrator of one domain's ODE, its
 //!   transition matrix, and the modal form for two real exponents.
 //! * `graze`: near-grazing starts for the paper model (test inputs).
+//! * `counting`: a counting global allocator for the allocation tests.
 //! * `reference`: the reference periodic motions of `../shared/reference/`.
 #![allow(dead_code)]
 
+pub mod counting;
 pub mod dopri;
 pub mod events;
 pub mod graze;
