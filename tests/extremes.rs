@@ -19,7 +19,7 @@
 //! 4. `W` from 1e-3 to 1e3 (paper model, Q0 = 70 and a forcing reaching the
 //!    belt speed): `attractor::find` from rest gives a typed outcome; every
 //!    motion survives 3 re-simulated cycles, every NM its forced amplitude;
-//!    event sequences against `Dp` at W = 1e-2, 1e-1, 10, 100.
+//!    event sequences against `PiecewiseOde` at W = 1e-2, 1e-1, 10, 100.
 //! 5. Flights of 1e4 forcing periods: the state in Ω4 is the forced response;
 //!    three periodic motions simulated 1e4 periods stay on their Newton points.
 //! 6. Grazing within 1e-12 of tangency (overshoots ±1e-12, ±1e-13, 0): a

@@ -4,10 +4,12 @@
 //! output), driven by one generic explicit Runge–Kutta stepper.
 //!
 //! Written for the tests from the textbook, not copied from `src/`: the
-//! library's integrator (`src/dynamics/integrate.rs`) spells its stages out
-//! by hand and interpolates with a cubic Hermite polynomial; this one reads
-//! every coefficient from the arrays below and interpolates with the
-//! tableau's own 4th-order dense output.
+//! library's integrator (`src/dynamics/integrate.rs`) keeps its own decimal
+//! copy of the tableau with the error weights `b − b̂` precomputed, and
+//! locates events on a cubic Hermite interpolant; this one takes every
+//! coefficient from the published rationals, forms `b − b̂` from both
+//! weight rows, and interpolates with the tableau's own 4th-order dense
+//! output (`tests/references.rs` checks the orders against a closed form).
 
 /// Stages of the method (the seventh is the first of the next step: FSAL).
 pub const STAGES: usize = 7;
