@@ -7,11 +7,16 @@
 /// The first point of `(a, b]` where `outside` holds, given that it does
 /// not hold at `a` and does at `b`: bisection until the bracket is at most
 /// `tol` wide or cannot be split. Returns the outside end of the bracket.
-pub fn bisect(mut a: f64, mut b: f64, outside: impl Fn(f64) -> bool, tol: f64) -> f64 {
+pub fn bisect(a: f64, b: f64, outside: impl Fn(f64) -> bool, tol: f64) -> f64 {
+    bracket(a, b, outside, tol).1
+}
+
+/// [`bisect`]'s final bracket `(inside, outside)`.
+pub fn bracket(mut a: f64, mut b: f64, outside: impl Fn(f64) -> bool, tol: f64) -> (f64, f64) {
     loop {
         let mid = 0.5 * (a + b);
         if b - a <= tol || mid <= a || mid >= b {
-            return b;
+            return (a, b);
         }
         if outside(mid) {
             b = mid;
