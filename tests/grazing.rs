@@ -176,7 +176,7 @@ fn one_tangency_is_one_graze() {
                     if upper { "up" } else { "down" },
                     -eps
                 );
-                if let Some(e) = event_near(&sim, domain_seg(j, x0, v0, phi0), at, &what) {
+                if let Some(e) = event_near(sim, domain_seg(j, x0, v0, phi0), at, &what) {
                     assert_eq!(e.kind, EventKind::Graze, "{what}: {e:?}");
                     assert_eq!(e.boundary, k, "{what}: {e:?}");
                     assert!((e.phase - at).abs() < 1e-6, "{what}: graze at {e:?}");
