@@ -34,7 +34,8 @@
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion};
 use num_dual::{Derivative, Dual64, DualNum, DualSVec64};
 use stickslip::models::paper::{self, sweep_w, Paper};
 use stickslip::nalgebra::{Const, Matrix2, Vector2, U1};
@@ -347,6 +348,26 @@ fn check_agreement() {
 // Benchmarks.
 // ---------------------------------------------------------------------------
 
+/// Benchmark `f(params, X0, PHI0, X1, PHI1)` as `name` in the group `g`.
+fn at_point<P, R>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    params: &P,
+    f: impl Fn(&P, f64, f64, f64, f64) -> R,
+) {
+    g.bench_function(name, |b| {
+        b.iter(|| {
+            f(
+                black_box(params),
+                black_box(X0),
+                black_box(PHI0),
+                black_box(X1),
+                black_box(PHI1),
+            )
+        })
+    });
+}
+
 fn bench_jacobian(c: &mut Criterion) {
     check_agreement();
     let p = params();
@@ -369,83 +390,18 @@ fn bench_jacobian(c: &mut Criterion) {
             )
         })
     });
-    g.bench_function("generated_direct", |b| {
-        b.iter(|| {
-            paper::mapping_3_31(
-                black_box(&p),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("hand_written", |b| {
-        b.iter(|| {
-            hand_written(
-                black_box(&p),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("hand_written_precomputed", |b| {
-        b.iter(|| {
-            hand_written_precomputed(
-                black_box(&pre),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("dual_x4", |b| {
-        b.iter(|| {
-            dual_x4(
-                black_box(&p),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("dual_vec4", |b| {
-        b.iter(|| {
-            dual_vec4(
-                black_box(&p),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("finite_diff", |b| {
-        b.iter(|| {
-            finite_diff(
-                black_box(&p),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("scene_specialized", |b| {
-        b.iter(|| {
-            sweep_w::mapping_3_31(
-                black_box(&scene),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
+    at_point(&mut g, "generated_direct", &p, paper::mapping_3_31);
+    at_point(&mut g, "hand_written", &p, hand_written);
+    at_point(
+        &mut g,
+        "hand_written_precomputed",
+        &pre,
+        hand_written_precomputed,
+    );
+    at_point(&mut g, "dual_x4", &p, dual_x4);
+    at_point(&mut g, "dual_vec4", &p, dual_vec4);
+    at_point(&mut g, "finite_diff", &p, finite_diff);
+    at_point(&mut g, "scene_specialized", &scene, sweep_w::mapping_3_31);
     g.finish();
 }
 
@@ -453,28 +409,8 @@ fn bench_residual(c: &mut Criterion) {
     let p = params();
     let scene = sweep_w::Params { W: p.W };
     let mut g = c.benchmark_group("residual");
-    g.bench_function("generated", |b| {
-        b.iter(|| {
-            paper::residual_3_31(
-                black_box(&p),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
-    g.bench_function("scene_specialized", |b| {
-        b.iter(|| {
-            sweep_w::residual_3_31(
-                black_box(&scene),
-                black_box(X0),
-                black_box(PHI0),
-                black_box(X1),
-                black_box(PHI1),
-            )
-        })
-    });
+    at_point(&mut g, "generated", &p, paper::residual_3_31);
+    at_point(&mut g, "scene_specialized", &scene, sweep_w::residual_3_31);
     g.finish();
 }
 

@@ -2,41 +2,11 @@
 //! residual + Jacobian evaluations of every mapping, flows, vector fields and
 //! stick forces.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+mod common;
 
+use common::counting::{allocated, Counting};
 use stickslip::models::paper::{Paper, Params};
 use stickslip::Model;
-
-struct Counting;
-
-// Per thread, so that tests running in parallel do not count each other.
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count() {
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-// SAFETY-free: delegates to the system allocator and only counts.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -49,7 +19,7 @@ fn residuals_jacobians_and_flows_allocate_nothing() {
     };
     let n_mappings = Paper::INFO.mappings.len();
     let n_domains = Paper::INFO.domains.len();
-    let before = allocations();
+    let before = allocated();
     let mut sink = 0.0;
     for k in 0..100 {
         let phi1 = 5.0 + 0.01 * k as f64;
@@ -66,7 +36,7 @@ fn residuals_jacobians_and_flows_allocate_nothing() {
         }
         sink += Paper::stick_forces(&p, 0.3, phi1).map_or(0.0, |f| f.input_above);
     }
-    let after = allocations();
+    let after = allocated();
     assert!(sink.is_finite());
     assert_eq!(
         after - before,
@@ -79,8 +49,8 @@ fn residuals_jacobians_and_flows_allocate_nothing() {
 #[test]
 fn the_counter_counts() {
     // The check above can fail: an allocation is seen.
-    let before = allocations();
+    let before = allocated();
     let v: Vec<f64> = std::hint::black_box(vec![1.0; 16]);
-    assert!(allocations() > before);
+    assert!(allocated() > before);
     drop(v);
 }

@@ -7,54 +7,18 @@
 //! The count is kept per thread, so tests running in parallel (the test
 //! harness's own threads) cannot disturb each other's counts.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+mod common;
 
+use common::counting::{allocations, Counting};
+use common::reference::references;
 use stickslip::dynamics::simulate::{Location, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
-struct Counting;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count() {
-    // `try_with`: the slot may be gone while a thread shuts down.
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-// Delegates to the system allocator and only counts.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        count();
-        unsafe { System.alloc_zeroed(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
 #[global_allocator]
 static GLOBAL: Counting = Counting;
-
-/// Allocations made on this thread by `f`, and its result.
-fn allocations<T>(f: impl FnOnce() -> T) -> (usize, T) {
-    let before = ALLOCATIONS.with(|c| c.get());
-    let out = std::hint::black_box(f());
-    (ALLOCATIONS.with(|c| c.get()) - before, out)
-}
 
 fn params(w: f64) -> Params {
     Params {
@@ -64,52 +28,14 @@ fn params(w: f64) -> Params {
     }
 }
 
-/// Reference motions (SPEC reference cases): structure, W, switching points.
-fn cases() -> Vec<(&'static str, f64, Vec<SwitchingPoint>)> {
-    let pts = |v: &[(f64, f64)]| {
-        v.iter()
-            .map(|&(phase, x)| SwitchingPoint { phase, x })
-            .collect::<Vec<_>>()
-    };
-    vec![
-        (
-            "P_{3_33 4_33}",
-            3.0,
-            pts(&[
-                (5.487535830832371, 0.5815233766718289),
-                (10.32665293971474, -0.3002260919008602),
-            ]),
-        ),
-        (
-            "P_{3_31 0_11 3_13 4_33}",
-            3.7,
-            pts(&[
-                (5.891765347235473, 0.8799569068931978),
-                (9.967084195729768, -0.6490335088410385),
-                (10.618565545807334, -0.23784693296713225),
-                (11.21264563490298, 0.2438396257590662),
-            ]),
-        ),
-        (
-            "P_{3_31 1_12 2_22 1_21 3_13 4_33}",
-            5.0,
-            pts(&[
-                (0.44978275444676297, 2.3444143268199222),
-                (3.845154388424461, -2.3096270701834074),
-                (3.966288968452073, -2.255080621936518),
-                (4.108275319339592, -2.148470024813479),
-                (6.462410323345743, 2.183586772560424),
-                (6.591544731401805, 2.280615346848513),
-            ]),
-        ),
-    ]
-}
-
 #[test]
 fn newton_direction_and_step_allocate_nothing() {
-    for (text, w, reference) in cases() {
-        let p = params(w);
-        let structure = Structure::parse(Paper::INFO, text, 1).expect("structure");
+    // The reference motions (SPEC reference cases, ../shared/reference).
+    for case in references() {
+        let (text, reference) = (&case.structure, &case.points);
+        let p = params(case.w);
+        assert_eq!(case.q0, p.Q0, "{text}");
+        let structure = Structure::parse(Paper::INFO, text, case.periods).expect("structure");
         let mut solver = PeriodicSolver::<Paper>::new(structure);
         // A perturbed guess, so that the steps do real work (and backtrack).
         let mut points: Vec<SwitchingPoint> = reference

@@ -1,7 +1,7 @@
 //! `stickslip check`, run as a user runs it: exit status 0 for every shipped
 //! model and 1 for every bad one; its report is word for word that of the
 //! build path (`check_file`, which `build.rs` calls) and the message inside
-//! the `model!(file = ...)` compile error (`tests/ui/file_*.stderr`); `--json`
+//! the `model!(file = ...)` compile error (`tests/ui/files/*.stderr`); `--json`
 //! locates each error at the line and column (in characters) of the
 //! offending text, found here independently by searching the source.
 
@@ -124,7 +124,8 @@ fn macro_message(stderr: &str) -> Option<String> {
 #[test]
 fn the_macro_reports_the_same_text_for_each_model_file() {
     let mut compared = 0;
-    for case in std::fs::read_dir(Path::new(ROOT).join("tests/ui")).expect("tests/ui") {
+    let files = Path::new(ROOT).join("tests/ui/files");
+    for case in std::fs::read_dir(files).expect("tests/ui/files") {
         let path = case.expect("entry").path();
         if path.extension().is_none_or(|e| e != "rs") {
             continue;
@@ -138,7 +139,7 @@ fn the_macro_reports_the_same_text_for_each_model_file() {
             continue;
         };
         if !Path::new(ROOT).join(file).exists() {
-            continue; // file_missing: the macro's path is absolute, see below
+            continue; // files/missing: the macro's path is absolute, see below
         }
         let stderr = std::fs::read_to_string(path.with_extension("stderr")).expect("a .stderr");
         let message = macro_message(&stderr)

@@ -1,13 +1,14 @@
 //! Flows across the damping-regime boundary `d_j^2 - c_j` in [-1e-6, 1e-6],
 //! and exactly 0, against an independent reference: the Taylor series in the
 //! elapsed time of the solution of `x'' + 2 d_j x' + c_j x = A0 cos(W t) - b_j`,
-//! integrated in short, well-conditioned steps. Relative error <= 1e-12.
+//! integrated in short, well-conditioned steps (`tests/common/taylor.rs`). Relative error <= 1e-12.
 //! Both paths are covered: the run-time regime switch (`homogeneous::general`,
 //! all parameters free) and the regime fixed at build time by a scene.
 
 mod common;
 
 use common::rng;
+use common::taylor::Ode;
 use rand::Rng;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::{Model, Regime};
@@ -33,57 +34,6 @@ stickslip::model! {
     }
 }
 
-/// `(x, v)` after `tau` from `(x0, v0)` at phase `phi0`: a Taylor-series
-/// integrator of the ODE (order 30, 64 sub-steps, so that every series is
-/// well conditioned in `f64`), independent of the closed form.
-#[allow(clippy::too_many_arguments)]
-fn reference(
-    d: f64,
-    c: f64,
-    b: f64,
-    a0: f64,
-    w: f64,
-    x0: f64,
-    v0: f64,
-    phi0: f64,
-    tau: f64,
-) -> (f64, f64) {
-    const ORDER: usize = 30;
-    const STEPS: usize = 64;
-    let h = tau / STEPS as f64;
-    let (mut x, mut v) = (x0, v0);
-    for k in 0..STEPS {
-        let phase = phi0 + w * (k as f64 * h);
-        let (sn, cs) = phase.sin_cos();
-        // d^n/dt^n cos(phase + W t) at 0 cycles through cos, -sin, -cos, sin.
-        let cycle = [cs, -sn, -cs, sn];
-        let mut a = [0.0f64; ORDER + 2];
-        a[0] = x;
-        a[1] = v;
-        let mut wn = 1.0; // W^n / n!
-        for n in 0..ORDER {
-            if n > 0 {
-                wn *= w / n as f64;
-            }
-            let mut g = a0 * wn * cycle[n % 4];
-            if n == 0 {
-                g -= b;
-            }
-            let n1 = (n + 1) as f64;
-            a[n + 2] = (g - 2.0 * d * n1 * a[n + 1] - c * a[n]) / (n1 * (n + 2) as f64);
-        }
-        // Horner in h.
-        let (mut xs, mut vs) = (0.0, 0.0);
-        for n in (0..=ORDER).rev() {
-            xs = xs * h + a[n];
-            vs = vs * h + (n + 1) as f64 * a[n + 1];
-        }
-        x = xs;
-        v = vs;
-    }
-    (x, v)
-}
-
 fn check_flow<M: Model>(p: &M::Params, j: usize, r: &mut rand::rngs::StdRng, what: &str) -> f64 {
     let co = M::coefficients(p, j);
     let osc = M::oscillator(p);
@@ -98,17 +48,9 @@ fn check_flow<M: Model>(p: &M::Params, j: usize, r: &mut rand::rngs::StdRng, wha
         let [x, v] = M::flow(p, j, x0, v0, phi0, phi1);
         // The reference uses the elapsed time the generated code sees.
         let t = (phi1 - phi0) / osc.frequency;
-        let (xr, vr) = reference(
-            co.two_d / 2.0,
-            co.c,
-            co.b,
-            osc.amplitude,
-            osc.frequency,
-            x0,
-            v0,
-            phi0,
-            t,
-        );
+        // The Taylor reference in 64 sub-steps, so that every series is well
+        // conditioned in `f64`.
+        let (xr, vr) = Ode::of::<M>(p, j).taylor_in(64, x0, v0, phi0, t);
         let err = ((x - xr).powi(2) + (v - vr).powi(2)).sqrt() / (xr * xr + vr * vr).sqrt();
         worst = worst.max(err);
         assert!(

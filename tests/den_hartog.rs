@@ -32,6 +32,10 @@
 //! is positive: spring and forcing overcome friction) and the velocity keeps
 //! its sign in between. Where the first condition fails, the motion has stops.
 
+mod common;
+
+use common::dopri;
+use common::roots::bracket;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::coulomb::{Coulomb, Params};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
@@ -129,20 +133,9 @@ fn den_hartog(o: Osc) -> Option<NonStop> {
 /// reversals (`kick = 0`), by bisection on the closed form.
 fn boundary(o: Osc) -> f64 {
     let ok = |ak: f64| den_hartog(Osc { ak, ..o }).is_some_and(|n| n.kick > 0.0 && n.x0 > 0.0);
-    let (mut lo, mut hi) = (0.0, o.a0);
-    assert!(ok(1e-9 * o.a0) && !ok(hi), "{o:?}");
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if ok(mid) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        if hi - lo <= 1e-15 * hi {
-            break;
-        }
-    }
-    lo
+    assert!(ok(1e-9 * o.a0) && !ok(o.a0), "{o:?}");
+    // The last friction level that is still non-stop, to 1e-15 relative.
+    bracket(0.0, o.a0, |ak| !ok(ak), 1e-15 * o.a0).0
 }
 
 /// Parameters of `coulomb` with the given oscillator, `mus = ratio * muk`.
@@ -286,7 +279,8 @@ fn the_closed_form_is_den_hartogs_undamped_formula() {
 #[test]
 fn the_closed_form_solves_the_equation_of_motion() {
     // Independent of the derivation: integrate the ODE over one half period
-    // from the closed form's minimum (RK4, fine steps) and land on its maximum.
+    // from the closed form's minimum (Dormand–Prince, `tests/common/dopri.rs`,
+    // fine fixed steps) and land on its maximum.
     for (beta, zeta) in [(0.75, 0.0), (1.6, 0.05), (2.5, 0.3)] {
         let (_, o0) = params(beta, zeta, 0.0, 1.0);
         let o = Osc {
@@ -294,26 +288,20 @@ fn the_closed_form_solves_the_equation_of_motion() {
             ..o0
         };
         let n = den_hartog(o).expect("non-stop motion");
-        let f = |t: f64, x: f64, v: f64| o.a0 * (o.w * t).cos() - o.ak - 2.0 * o.d * v - o.c * x;
-        let steps = 20_000;
+        let f = |t: f64, y: &[f64; 2]| {
+            [
+                y[1],
+                o.a0 * (o.w * t).cos() - o.ak - 2.0 * o.d * y[1] - o.c * y[0],
+            ]
+        };
+        let steps = 2_000;
         let t0 = n.phi / o.w;
         let h = PI / o.w / steps as f64;
-        let (mut x, mut v) = (-n.x0, 0.0);
+        let mut y = [-n.x0, 0.0];
         for i in 0..steps {
-            let t = t0 + h * i as f64;
-            let (k1x, k1v) = (v, f(t, x, v));
-            let (k2x, k2v) = (
-                v + 0.5 * h * k1v,
-                f(t + 0.5 * h, x + 0.5 * h * k1x, v + 0.5 * h * k1v),
-            );
-            let (k3x, k3v) = (
-                v + 0.5 * h * k2v,
-                f(t + 0.5 * h, x + 0.5 * h * k2x, v + 0.5 * h * k2v),
-            );
-            let (k4x, k4v) = (v + h * k3v, f(t + h, x + h * k3x, v + h * k3v));
-            x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
-            v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+            y = dopri::step(f, t0 + h * i as f64, y, h).y;
         }
+        let [x, v] = y;
         assert!(
             (x - n.x0).abs() < 1e-10 * n.x0 && v.abs() < 1e-9 * o.w * n.x0,
             "β = {beta}, ζ = {zeta}: ({x}, {v}) vs ({}, 0)",

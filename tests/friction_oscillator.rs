@@ -94,36 +94,34 @@ fn a_stick_reached_after_a_transient_is_permanent_exactly_when_the_bound_says() 
     assert_eq!(seen, 12);
 }
 
-#[test]
-fn simulate_json_reports_the_stick_with_its_position() {
+/// `stickslip simulate --model coulomb --set SET` with `extra` arguments:
+/// its standard output, after asserting success.
+fn simulate_coulomb(set: &str, extra: &[&str]) -> Vec<u8> {
     let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args([
-            "simulate",
-            "--model",
-            "coulomb",
-            "--set",
-            "V=0,mus=2,muk=2,Q0=1,m=1,c=1,g=1,W=0.5",
-            "--json",
-        ])
+        .args(["simulate", "--model", "coulomb", "--set", set])
+        .args(extra)
         .output()
         .expect("run the CLI");
     assert!(out.status.success(), "{out:?}");
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    out.stdout
+}
+
+/// The same with `--json`, parsed.
+fn simulate_coulomb_json(set: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["--json"];
+    args.extend_from_slice(extra);
+    serde_json::from_slice(&simulate_coulomb(set, &args)).expect("JSON")
+}
+
+#[test]
+fn simulate_json_reports_the_stick_with_its_position() {
+    let set = "V=0,mus=2,muk=2,Q0=1,m=1,c=1,g=1,W=0.5";
+    let json = simulate_coulomb_json(set, &[]);
     assert_eq!(json["kind"], "stick");
     assert_eq!(json["x"], 0.0);
     assert_eq!(json["static_bound"], 2.0);
-    let text = Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args([
-            "simulate",
-            "--model",
-            "coulomb",
-            "--set",
-            "V=0,mus=2,muk=2,Q0=1,m=1,c=1,g=1,W=0.5",
-        ])
-        .output()
-        .expect("run the CLI");
-    assert!(text.status.success());
-    assert!(String::from_utf8_lossy(&text.stdout).contains("permanent stick"));
+    let text = simulate_coulomb(set, &[]);
+    assert!(String::from_utf8_lossy(&text).contains("permanent stick"));
 }
 
 #[test]
@@ -389,13 +387,7 @@ fn simulate_reports_the_unforced_belt_cycle_as_autonomous() {
         assert!((cycle.x - (ak / c - u0)).abs() < 1e-10, "{how}: {cycle:?}");
         assert_eq!(cycle.steps.len(), 2, "{how}: one stick, one slip");
         let set = format!("m={m},c={c},V={v},mus={mus},muk={muk},Q0=0,d=0,g=9.8,W=1.3");
-        let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .args(["simulate", "--model", "coulomb", "--set", &set, "--json"])
-            .args(["--from", &format!("0,{v},0")])
-            .output()
-            .expect("run the CLI");
-        assert!(out.status.success(), "{out:?}");
-        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        let json = simulate_coulomb_json(&set, &["--from", &format!("0,{v},0")]);
         assert_eq!(json["kind"], "autonomous_cycle", "{json}");
         let get = |k: &str| json[k].as_f64().expect(k);
         assert!((get("stick") - t_stick).abs() < 1e-10 * t_stick, "{json}");
@@ -449,19 +441,11 @@ fn an_unsettled_undamped_motion_says_so() {
 /// with a little damping the family is gone and so is the claim.
 #[test]
 fn simulate_from_rest_finds_the_edge_of_the_neutral_family() {
-    let run = |d: f64| -> serde_json::Value {
-        let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .args([
-                "simulate",
-                "--model",
-                "coulomb",
-                "--set",
-                &format!("m=1,c=1,g=1,d={d},V=0,mus=0.1,muk=0.1,Q0=1,W=0.5"),
-                "--json",
-            ])
-            .output()
-            .expect("run the CLI");
-        serde_json::from_slice(&out.stdout).expect("JSON")
+    let run = |d: f64| {
+        simulate_coulomb_json(
+            &format!("m=1,c=1,g=1,d={d},V=0,mus=0.1,muk=0.1,Q0=1,W=0.5"),
+            &[],
+        )
     };
     let json = run(0.0);
     assert_eq!(json["kind"], "neutral_family", "{json}");

@@ -14,10 +14,13 @@
 //! * `crossing::first_root` on a function whose root lies in the sub-ulp gap
 //!   between the exact end `φ + Δ` of an interval and its rounded value.
 
+mod common;
+
+use common::graze::{band, near_graze, BAND_SIDES};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use stickslip::dynamics::crossing::{first_root, Probe, RootKind};
-use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
+use stickslip::dynamics::simulate::{Event, EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
 use stickslip::{FrictionOscillator, Model};
 
@@ -42,62 +45,6 @@ fn domain_seg(j: usize, x: f64, v: f64, phase: f64) -> Segment {
     }
 }
 
-/// The band of domain `j`.
-fn band(sim: &Simulator<Paper>, j: usize) -> (f64, f64) {
-    let d = Paper::INFO.domains[j];
-    (
-        d.lower.map_or(f64::NEG_INFINITY, |k| sim.velocity(k)),
-        d.upper.map_or(f64::INFINITY, |k| sim.velocity(k)),
-    )
-}
-
-/// A flow in domain `j` whose velocity has an extremum passing the upper
-/// (`upper`) or lower boundary by `overshoot` (negative: staying short by
-/// that much), and stays inside the band before it. Built backwards: at a
-/// phase `phi_m` near `phi_base` the state `v_m = V_b ± overshoot`,
-/// `x_m` with zero acceleration (`c_j x_m = A0 cos phi_m - b_j - 2 d_j v_m`)
-/// and the rate of the acceleration of the right sign (a maximum or a
-/// minimum of v); the closed form run backwards by `back` gives the start.
-/// Returns `(x0, v0, phi0, phi_m)`.
-fn near_graze(
-    sim: &Simulator<Paper>,
-    j: usize,
-    upper: bool,
-    phi_base: f64,
-    overshoot: f64,
-) -> Option<(f64, f64, f64, f64)> {
-    let p = sim.params();
-    let (lo, hi) = band(sim, j);
-    let sign = if upper { 1.0 } else { -1.0 };
-    let vm = if upper { hi } else { lo } + sign * overshoot;
-    let co = Paper::coefficients(p, j);
-    let a0 = sim.oscillator().amplitude;
-    for k in 0..628 {
-        let phi_m = phi_base + 0.01 * k as f64;
-        let xm = (a0 * phi_m.cos() - co.b - co.two_d * vm) / co.c;
-        let [acc, rate] = Paper::normal_field(p, j, xm, vm, phi_m);
-        debug_assert!(acc.abs() < 1e-12);
-        // A maximum needs a' < 0, a minimum a' > 0, clearly.
-        if sign * rate > -1e-3 {
-            continue;
-        }
-        for back in [2.0, 1.0, 0.5, 0.25] {
-            let phi0 = phi_m - back;
-            let [x0, v0] = Paper::flow(p, j, xm, vm, phi_m, phi0);
-            // Strictly inside the band from the start until just before the extremum.
-            let inside = |v: f64| v > lo && v < hi;
-            let clear = (0..2000).all(|i| {
-                let phi = phi0 + back * i as f64 / 2000.0;
-                inside(Paper::flow(p, j, xm, vm, phi_m, phi)[1])
-            });
-            if clear && inside(v0) {
-                return Some((x0, v0, phi0, phi_m));
-            }
-        }
-    }
-    None
-}
-
 #[test]
 fn near_grazing_flows_cross_or_not_as_they_should() {
     // The velocity in a domain oscillates about 0: an extremum on the far
@@ -106,16 +53,7 @@ fn near_grazing_flows_cross_or_not_as_they_should() {
     let info = Paper::INFO;
     let graze_tol = SimOptions::default().graze_tol;
     let mut checked = 0;
-    // (domain index, towards its upper boundary?)
-    let cases = [
-        (0, true),  // Ω4 up to Σ3
-        (1, true),  // Ω3 up to Σ1 (stick boundary)
-        (1, false), // Ω3 down to Σ3
-        (2, true),  // Ω1 up to Σ2
-        (2, false), // Ω1 down to Σ1 (stick boundary)
-        (3, false), // Ω2 down to Σ2
-    ];
-    for (j, upper) in cases {
+    for (j, upper) in BAND_SIDES {
         for (n, base) in [0.3, 2.0, 4.4, 1000.0 * TAU + 1.1].into_iter().enumerate() {
             for eps in [1e-7f64, 1e-9, -1e-9, -1e-7, 1e-12, -1e-12] {
                 if eps.abs() < 1e-10 && base > 10.0 {
@@ -182,6 +120,27 @@ fn near_grazing_flows_cross_or_not_as_they_should() {
     assert_eq!(checked, 6 * (3 * 6 + 4));
 }
 
+/// The event `sim` reports from `seg` within 1e-3 in phase of the
+/// tangency at `at`, if any: one tangency is at most one event.
+fn event_near(sim: &Simulator<Paper>, seg: Segment, at: f64, what: &str) -> Option<Event> {
+    let mut near = Vec::new();
+    sim.run(seg, at + 0.05, |e| {
+        if (e.phase - at).abs() < 1e-3 {
+            near.push(*e);
+        }
+    })
+    .unwrap_or_else(|e| panic!("{what}: {e}"));
+    match near.as_slice() {
+        [] => None,
+        [e] => Some(*e),
+        more => panic!(
+            "{what}: {} events at one tangency: {:?}",
+            more.len(),
+            more.iter().map(|e| (e.kind, e.phase)).collect::<Vec<_>>()
+        ),
+    }
+}
+
 /// One tangency is one `Graze` event: a flow whose velocity extremum touches
 /// a boundary from inside its band (short by 1e-13 to 5e-11, within the graze
 /// tolerance), simulated by `Simulator::run` through the tangency, records
@@ -192,17 +151,9 @@ fn near_grazing_flows_cross_or_not_as_they_should() {
 fn one_tangency_is_one_graze() {
     let sims = [sim_at(3.0, 70.0), sim_at(5.0, 70.0), sim_at(7.0, 150.0)];
     let info = Paper::INFO;
-    let cases = [
-        (0, true),
-        (1, true),
-        (1, false),
-        (2, true),
-        (2, false),
-        (3, false),
-    ];
     let mut grazes = 0;
     let mut checked = 0;
-    for (j, upper) in cases {
+    for (j, upper) in BAND_SIDES {
         for base in [0.3, 2.0, 4.4] {
             for eps in [-1e-13, -1e-12, -1e-11, -5e-11] {
                 let Some((sim, (x0, v0, phi0, at))) = sims
@@ -225,26 +176,11 @@ fn one_tangency_is_one_graze() {
                     if upper { "up" } else { "down" },
                     -eps
                 );
-                let mut near = Vec::new();
-                sim.run(domain_seg(j, x0, v0, phi0), at + 0.05, |e| {
-                    if (e.phase - at).abs() < 1e-3 {
-                        near.push(*e);
-                    }
-                })
-                .unwrap_or_else(|e| panic!("{what}: {e}"));
-                match near.as_slice() {
-                    [] => {}
-                    [e] => {
-                        assert_eq!(e.kind, EventKind::Graze, "{what}: {e:?}");
-                        assert_eq!(e.boundary, k, "{what}: {e:?}");
-                        assert!((e.phase - at).abs() < 1e-6, "{what}: graze at {e:?}");
-                        grazes += 1;
-                    }
-                    more => panic!(
-                        "{what}: {} events at one tangency: {:?}",
-                        more.len(),
-                        more.iter().map(|e| (e.kind, e.phase)).collect::<Vec<_>>()
-                    ),
+                if let Some(e) = event_near(sim, domain_seg(j, x0, v0, phi0), at, &what) {
+                    assert_eq!(e.kind, EventKind::Graze, "{what}: {e:?}");
+                    assert_eq!(e.boundary, k, "{what}: {e:?}");
+                    assert!((e.phase - at).abs() < 1e-6, "{what}: graze at {e:?}");
+                    grazes += 1;
                 }
                 checked += 1;
             }
@@ -293,24 +229,9 @@ fn one_stick_tangency_is_one_graze() {
                 search_from: phi0,
             };
             let what = format!("stick from phase {phi0}, Fnf peaks at as {eps:+e}");
-            let mut near = Vec::new();
-            sim.run(seg, peak + 0.05, |e| {
-                if (e.phase - peak).abs() < 1e-3 {
-                    near.push(*e);
-                }
-            })
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
-            match near.as_slice() {
-                [] => {}
-                [e] => {
-                    assert_eq!(e.kind, EventKind::Graze, "{what}: {e:?}");
-                    grazes += 1;
-                }
-                more => panic!(
-                    "{what}: {} events at one tangency: {:?}",
-                    more.len(),
-                    more.iter().map(|e| (e.kind, e.phase)).collect::<Vec<_>>()
-                ),
+            if let Some(e) = event_near(&sim, seg, peak, &what) {
+                assert_eq!(e.kind, EventKind::Graze, "{what}: {e:?}");
+                grazes += 1;
             }
         }
     }
@@ -386,6 +307,25 @@ fn near_grazing_stick_end() {
     }
 }
 
+/// An event `off` (in phase) from the root it reports, at `phase`: at most
+/// 64 eps·|phase| (+1e-13). Returns the distance in units of eps·|phase|.
+fn ulps_from_root(off: f64, phase: f64, what: impl Fn() -> String) -> f64 {
+    let unit = f64::EPSILON * phase.abs().max(1.0);
+    assert!(
+        off <= 64.0 * unit + 1e-13,
+        "{}, {off:e} from the root",
+        what()
+    );
+    off / unit
+}
+
+/// `samples` phases evenly spaced after `phi0`, the last strictly before
+/// `end` (1e-9 of slack for rounding at the root).
+fn samples_before(phi0: f64, end: f64, samples: usize) -> impl Iterator<Item = f64> {
+    let last = end - 1e-9 * end.abs().max(1.0);
+    (1..=samples).map(move |i| phi0 + (last - phi0) * i as f64 / samples as f64)
+}
+
 /// Dense sampling of the closed-form flow (1e5 points) between the start and
 /// the reported event (or the limit): it must never find the flow outside
 /// its band before the event.
@@ -434,20 +374,15 @@ fn random_starts_agree_with_dense_sampling() {
                     let slope =
                         sim.acceleration(seg.location, x, v, e.phase) / sim.oscillator().frequency;
                     let off = (v - sim.velocity(e.boundary)).abs() / slope.abs();
-                    worst_v = worst_v.max(off / (f64::EPSILON * e.phase.abs().max(1.0)));
-                    assert!(
-                        off <= 64.0 * f64::EPSILON * e.phase.abs().max(1.0) + 1e-13,
-                        "start {n}: event {e:?} but v = {v} there, {off:e} from the root"
-                    );
+                    worst_v = worst_v.max(ulps_from_root(off, e.phase, || {
+                        format!("start {n}: event {e:?} but v = {v} there")
+                    }));
                 }
                 e.phase
             }
             None => limit,
         };
-        // Samples strictly before the event (1e-9 of slack for rounding at the root).
-        let last = end - 1e-9 * end.abs().max(1.0);
-        for i in 1..=samples {
-            let phi = phi0 + (last - phi0) * i as f64 / samples as f64;
+        for phi in samples_before(phi0, end, samples) {
             let (_, v) = sim.state_at(&seg, phi);
             assert!(
                 v > lo && v < hi,
@@ -504,19 +439,15 @@ fn random_sticks_agree_with_dense_sampling() {
                     let slope = Paper::oscillator(&p).amplitude * e.phase.sin()
                         + sim.oscillator().stiffness * vs / w;
                     let off = (f.abs() - bound).abs() / slope.abs();
-                    worst = worst.max(off / (f64::EPSILON * e.phase.abs().max(1.0)));
-                    assert!(
-                        off <= 64.0 * f64::EPSILON * e.phase.abs().max(1.0) + 1e-13,
-                        "stick {n}: ends at |Fnf| = {f}, {off:e} from the root"
-                    );
+                    worst = worst.max(ulps_from_root(off, e.phase, || {
+                        format!("stick {n}: ends at |Fnf| = {f}")
+                    }));
                 }
                 e.phase
             }
             None => limit,
         };
-        let last = end - 1e-9 * end.abs().max(1.0);
-        for i in 1..=samples {
-            let phi = phi0 + (last - phi0) * i as f64 / samples as f64;
+        for phi in samples_before(phi0, end, samples) {
             let f = f_at(x0, phi);
             assert!(
                 f.abs() < bound,

@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::roots::bracket;
 use common::{derivative, params_for, rng, TARGETS};
 use stickslip::models::paper::Paper;
 use stickslip::{MappingKind, Model};
@@ -86,16 +87,9 @@ fn local_jacobian_is_minus_inverse_next_times_prev() {
     let (x0, phi0) = (0.2438396257590662, 4.929460327723394);
     let dom = Paper::INFO.mappings[idx].domain.expect("flow mapping");
     let v_at = |phi: f64| Paper::flow(&p, dom, x0, 3.0, phi0, phi)[1] - 1.5;
-    let (mut a, mut b) = (phi0 + 0.1, phi0 + 1.2);
+    let (a, b) = (phi0 + 0.1, phi0 + 1.2);
     assert!(v_at(a) > 0.0 && v_at(b) < 0.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (a + b);
-        if v_at(mid) > 0.0 {
-            a = mid
-        } else {
-            b = mid
-        }
-    }
+    let (a, b) = bracket(a, b, |phi| v_at(phi) <= 0.0, 0.0);
     let phi1 = 0.5 * (a + b);
     let x1 = Paper::flow(&p, dom, x0, 3.0, phi0, phi1)[0];
     let eval = Paper::mapping(&p, idx, x0, phi0, x1, phi1);

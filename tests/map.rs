@@ -25,13 +25,6 @@ const X: &str = "W=2.5:5:6";
 const Y: &str = "Q0=70:90:3";
 const REFERENCE_W5: &str = "P_{3_31 1_12 2_22 1_21 3_13 4_33}";
 
-fn axes() -> (GridAxis, GridAxis) {
-    (
-        GridAxis::parse_for::<Paper>(X).unwrap(),
-        GridAxis::parse_for::<Paper>(Y).unwrap(),
-    )
-}
-
 fn dir(name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("map-{name}"));
     let _ = fs::remove_dir_all(&d);
@@ -39,9 +32,31 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-fn run(out: &Path, opts: MapOptions) -> Result<map::Summary, MapError> {
-    let (x, y) = axes();
+/// The paper model's map over the axes `x` and `y` (`NAME=FROM:TO:COUNT`) into `out`.
+fn run_on(x: &str, y: &str, out: &Path, opts: MapOptions) -> Result<map::Summary, MapError> {
+    let x = GridAxis::parse_for::<Paper>(x).unwrap();
+    let y = GridAxis::parse_for::<Paper>(y).unwrap();
     run_map::<Paper>(&Params::default(), &x, &y, out, &opts)
+}
+
+/// Options: continue the file at the output path.
+fn resume() -> MapOptions {
+    MapOptions {
+        resume: true,
+        ..MapOptions::default()
+    }
+}
+
+/// Options: stop after `n` points.
+fn at_most(n: usize) -> MapOptions {
+    MapOptions {
+        max_points: Some(n),
+        ..MapOptions::default()
+    }
+}
+
+fn run(out: &Path, opts: MapOptions) -> Result<map::Summary, MapError> {
+    run_on(X, Y, out, opts)
 }
 
 /// The uninterrupted single run's file, computed once.
@@ -65,7 +80,10 @@ fn data_lines(text: &str) -> Vec<&str> {
 #[test]
 fn a_single_run_parses_back_and_agrees_with_simulation() {
     let text = reference();
-    let (x, y) = axes();
+    let (x, y) = (
+        GridAxis::parse_for::<Paper>(X).unwrap(),
+        GridAxis::parse_for::<Paper>(Y).unwrap(),
+    );
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
@@ -161,14 +179,7 @@ fn b_killed_and_resumed_runs_equal_a_single_run() {
 
     // Stopped after 5 points: an unsorted, resumable file.
     let out = dir.join("limit.csv");
-    let s = run(
-        &out,
-        MapOptions {
-            max_points: Some(5),
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
+    let s = run(&out, at_most(5)).unwrap();
     assert!(!s.complete);
     assert_eq!(s.computed, 5);
     let partial = fs::read_to_string(&out).unwrap();
@@ -196,64 +207,24 @@ fn b_killed_and_resumed_runs_equal_a_single_run() {
     let mut f = fs::OpenOptions::new().append(true).open(&out).unwrap();
     std::io::Write::write_all(&mut f, b"17,5.0,9").unwrap();
     drop(f);
-    let s = run(
-        &out,
-        MapOptions {
-            resume: true,
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
+    let s = run(&out, resume()).unwrap();
     assert_eq!((s.already_done, s.computed, s.complete), (8, 10, true));
     assert_eq!(fs::read_to_string(&out).unwrap(), want);
     // Resuming a complete map computes nothing and changes nothing.
-    let s = run(
-        &out,
-        MapOptions {
-            resume: true,
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
+    let s = run(&out, resume()).unwrap();
     assert_eq!((s.already_done, s.computed, s.complete), (18, 0, true));
     assert_eq!(fs::read_to_string(&out).unwrap(), want);
 
     // Killed before the header was complete.
     let out = dir.join("header.csv");
     fs::write(&out, "# stickslip map mod").unwrap();
-    run(
-        &out,
-        MapOptions {
-            resume: true,
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
+    run(&out, resume()).unwrap();
     assert_eq!(fs::read_to_string(&out).unwrap(), want);
 
     // Resuming a file of another map is refused.
     let other = dir.join("other.csv");
-    let x = GridAxis::parse_for::<Paper>("W=2.5:5:5").unwrap();
-    let y = GridAxis::parse_for::<Paper>(Y).unwrap();
-    run_map::<Paper>(
-        &Params::default(),
-        &x,
-        &y,
-        &other,
-        &MapOptions {
-            max_points: Some(1),
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
-    let e = run(
-        &other,
-        MapOptions {
-            resume: true,
-            ..MapOptions::default()
-        },
-    )
-    .unwrap_err();
+    run_on("W=2.5:5:5", Y, &other, at_most(1)).unwrap();
+    let e = run(&other, resume()).unwrap_err();
     assert!(matches!(e, MapError::Mismatch { .. }), "{e}");
     assert!(e.to_string().contains("x axis W=2.5:5:5"), "{e}");
 }
@@ -264,9 +235,7 @@ const BIG_X: &str = "W=2.5:5:41";
 const BIG_Y: &str = "Q0=70:90:21";
 
 fn run_big(out: &Path, opts: MapOptions) -> Result<map::Summary, MapError> {
-    let x = GridAxis::parse_for::<Paper>(BIG_X).unwrap();
-    let y = GridAxis::parse_for::<Paper>(BIG_Y).unwrap();
-    run_map::<Paper>(&Params::default(), &x, &y, out, &opts)
+    run_on(BIG_X, BIG_Y, out, opts)
 }
 
 /// Run by `a_sigkilled_run_resumes` in a child process (the test binary
@@ -316,14 +285,7 @@ fn a_sigkilled_run_resumes() {
         .count();
     eprintln!("child killed ({status}) with {done} of {total} points written");
     assert!(done < total, "the child finished before it was killed");
-    let s = run_big(
-        &out,
-        MapOptions {
-            resume: true,
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
+    let s = run_big(&out, resume()).unwrap();
     assert!(s.complete);
     assert_eq!(s.already_done + s.computed, total);
     assert_eq!(fs::read_to_string(&out).unwrap(), want);
@@ -455,19 +417,7 @@ fn d_merge_errors_name_the_points() {
 
     // Another grid.
     let other = dir.join("other.csv");
-    let x = GridAxis::parse_for::<Paper>("W=2.5:5:6").unwrap();
-    let y = GridAxis::parse_for::<Paper>("Q0=70:91:3").unwrap();
-    run_map::<Paper>(
-        &Params::default(),
-        &x,
-        &y,
-        &other,
-        &MapOptions {
-            max_points: Some(1),
-            ..MapOptions::default()
-        },
-    )
-    .unwrap();
+    run_on("W=2.5:5:6", "Q0=70:91:3", &other, at_most(1)).unwrap();
     match merge(&[full.clone(), other.clone()], &out) {
         Err(e @ MapError::Mismatch { .. }) => {
             assert!(e.to_string().contains("y axis Q0=70:91:3"), "{e}")

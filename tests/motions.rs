@@ -11,7 +11,6 @@ use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::motion::{solve, Motion};
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 fn assert_matches(r: &Reference, motion: &Motion, how: &str) {
@@ -52,13 +51,8 @@ fn assert_matches(r: &Reference, motion: &Motion, how: &str) {
 #[test]
 fn newton_from_a_perturbed_guess_reproduces_the_reference_motions() {
     for r in references() {
-        let p = Params {
-            W: r.w,
-            Q0: r.q0,
-            ..Params::default()
-        };
-        let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("valid parameters");
-        let structure = Structure::parse(Paper::INFO, &r.structure, r.periods).expect("structure");
+        let sim = r.simulator();
+        let structure = r.structure();
         let guess: Vec<SwitchingPoint> = r
             .points
             .iter()
@@ -79,12 +73,7 @@ fn newton_from_a_perturbed_guess_reproduces_the_reference_motions() {
 #[test]
 fn simulation_from_rest_finds_the_reference_motions() {
     for r in references() {
-        let p = Params {
-            W: r.w,
-            Q0: r.q0,
-            ..Params::default()
-        };
-        let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("valid parameters");
+        let sim = r.simulator();
         let start = sim.start(0.0, 0.0, 0.0).expect("start");
         match attractor::find(&sim, start, AttractorOptions::default()).expect("settles") {
             Attractor::Periodic(motion) => assert_matches(&r, &motion, "simulate"),

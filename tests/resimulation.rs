@@ -11,30 +11,16 @@
 
 mod common;
 
-use common::reference::references;
-use stickslip::dynamics::simulate::{Event, EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::models::paper::{Paper, Params};
+use common::reference::{references, segment_for};
+use stickslip::dynamics::simulate::{Event, EventKind, Segment};
+use stickslip::models::paper::Paper;
 use stickslip::orbit::attractor::mapping_between;
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const TOL: f64 = 1e-10;
-
-/// The segment that starts mapping `idx` at `pt` (built directly: on a
-/// boundary, `Simulator::start` would pick the side from the vector field).
-fn segment_for(sim: &Simulator<Paper>, idx: usize, pt: SwitchingPoint) -> Segment {
-    let mi = Paper::INFO.mappings[idx];
-    Segment {
-        x: pt.x,
-        v: sim.velocity(mi.from),
-        phase: pt.phase,
-        location: mi.domain.map_or(Location::Stick, Location::Domain),
-        search_from: pt.phase,
-    }
-}
 
 /// A pseudo-event standing for the start of mapping `idx` at `seg`, so that
 /// `mapping_between(start, first event)` names the first mapping.
@@ -61,13 +47,8 @@ fn simulation_from_a_newton_solution_returns_to_it() {
     );
     let mut worst = 0.0f64;
     for r in &refs {
-        let p = Params {
-            W: r.w,
-            Q0: r.q0,
-            ..Params::default()
-        };
-        let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("valid parameters");
-        let structure = Structure::parse(info, &r.structure, r.periods).expect("structure");
+        let sim = r.simulator();
+        let structure = r.structure();
         let names: Vec<&str> = structure
             .steps()
             .iter()
@@ -173,15 +154,9 @@ fn simulation_from_a_newton_solution_returns_to_it() {
 /// bounded by the first cycle's).
 #[test]
 fn ten_cycles_stay_on_the_solution() {
-    let info = Paper::INFO;
     for r in references() {
-        let p = Params {
-            W: r.w,
-            Q0: r.q0,
-            ..Params::default()
-        };
-        let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("valid parameters");
-        let structure = Structure::parse(info, &r.structure, r.periods).expect("structure");
+        let sim = r.simulator();
+        let structure = r.structure();
         let motion = solve(
             &sim,
             structure.clone(),

@@ -5,7 +5,9 @@
 //! Edits replace text within a line, so the line numbers of `BASE` below
 //! hold in every test unless the test says otherwise.
 
-use stickslip_codegen::{generate_source, GeneratedFile};
+mod common;
+
+use common::{accepted, edit, errors, generate};
 
 /// Line numbers: 1 `model`, 2..=16 params, 17 `let`, 18..=24 oscillator,
 /// 25..=27 boundaries, 28..=31 domains (2, 1, 3, 4), 32 `}`.
@@ -61,20 +63,6 @@ const COULOMB: &str = r#"model coulomb {
 }
 "#;
 
-/// `source` with each `(from, to)` applied; `from` must occur exactly once.
-fn edit(source: &str, edits: &[(&str, &str)]) -> String {
-    let mut s = source.to_string();
-    for (from, to) in edits {
-        assert_eq!(
-            s.matches(from).count(),
-            1,
-            "`{from}` must occur exactly once in the model"
-        );
-        s = s.replacen(from, to, 1);
-    }
-    s
-}
-
 /// `BASE` with edits.
 fn with(edits: &[(&str, &str)]) -> String {
     edit(BASE, edits)
@@ -84,47 +72,6 @@ fn with(edits: &[(&str, &str)]) -> String {
 fn with_scene(scene: &str) -> String {
     let end = BASE.rfind('}').expect("closing brace");
     format!("{}{}{}", &BASE[..end], scene, &BASE[end..])
-}
-
-fn generate(source: &str) -> Result<GeneratedFile, String> {
-    generate_source(source, "test.ssm")
-}
-
-fn accepted(source: &str) -> GeneratedFile {
-    match generate(source) {
-        Ok(g) => g,
-        Err(report) => panic!("the model should be accepted, got:\n{report}"),
-    }
-}
-
-/// The errors of a rejected model, as `(message, "test.ssm:LINE:COL")`,
-/// after checking the report's shape and its final count line.
-fn errors(source: &str) -> Vec<(String, String)> {
-    let report = match generate(source) {
-        Ok(_) => panic!("the model should be rejected:\n{source}"),
-        Err(r) => r,
-    };
-    let lines: Vec<&str> = report.lines().collect();
-    let mut out = Vec::new();
-    for (i, line) in lines.iter().enumerate() {
-        if let Some(message) = line.strip_prefix("error: ") {
-            let location = lines
-                .get(i + 1)
-                .and_then(|l| l.trim_start().strip_prefix("--> "))
-                .unwrap_or_else(|| panic!("no location after `{line}` in:\n{report}"));
-            out.push((message.to_string(), location.to_string()));
-        }
-    }
-    let count = match out.len() {
-        1 => "1 error in test.ssm".to_string(),
-        n => format!("{n} errors in test.ssm"),
-    };
-    assert_eq!(
-        lines.last().copied(),
-        Some(count.as_str()),
-        "count line of:\n{report}"
-    );
-    out
 }
 
 /// Assert that the model is rejected with exactly one error, at `location`,

@@ -1,7 +1,7 @@
 //! Names the language accepts but Rust could not use as written, or that
 //! would collide in the generated code: each rejected at the name, with its
 //! `test.ssm:LINE:COL`, through `generate_source` (the `build.rs` path; the
-//! same cases through `model!` are `tests/ui/name_*.rs`). And the names that
+//! same cases through `model!` are in `tests/ui/names/`). And the names that
 //! look hostile but are accepted: they generate code that parses.
 //!
 //! `model(extra, scenes)` puts `extra` on line 8 (and on), after the six

@@ -4,7 +4,10 @@
 //! `generate_source` (or `generate_file` for file-level cases), on a thread
 //! with the default 2 MiB stack where depth is concerned.
 
-use stickslip_codegen::{generate_file, generate_source, GeneratedFile};
+mod common;
+
+use common::{accepted, edit, errors, parse_report};
+use stickslip_codegen::{generate_file, generate_source};
 
 /// A valid two-piece model. Lines: 1 `model`, 2..=10 params, 11 oscillator,
 /// 12 boundary, 13..=14 domains, 15 `}`.
@@ -47,44 +50,6 @@ const SMOOTH: &str = r#"model smooth {
     scene pl4 { free: W; pieces: 4; }
 }
 "#;
-
-fn edit(source: &str, edits: &[(&str, &str)]) -> String {
-    let mut s = source.to_string();
-    for (from, to) in edits {
-        assert_eq!(s.matches(from).count(), 1, "`{from}` must occur once");
-        s = s.replacen(from, to, 1);
-    }
-    s
-}
-
-fn accepted(source: &str) -> GeneratedFile {
-    generate_source(source, "test.ssm")
-        .unwrap_or_else(|r| panic!("the model should be accepted, got:\n{r}"))
-}
-
-/// `(message, "test.ssm:LINE:COL")` of every error.
-fn errors(source: &str) -> Vec<(String, String)> {
-    let report = match generate_source(source, "test.ssm") {
-        Ok(_) => panic!("the model should be rejected:\n{source}"),
-        Err(r) => r,
-    };
-    parse_report(&report)
-}
-
-fn parse_report(report: &str) -> Vec<(String, String)> {
-    let lines: Vec<&str> = report.lines().collect();
-    let mut out = Vec::new();
-    for (i, line) in lines.iter().enumerate() {
-        if let Some(message) = line.strip_prefix("error: ") {
-            let location = lines
-                .get(i + 1)
-                .and_then(|l| l.trim_start().strip_prefix("--> "))
-                .unwrap_or_else(|| panic!("no location after `{line}` in:\n{report}"));
-            out.push((message.to_string(), location.to_string()));
-        }
-    }
-    out
-}
 
 #[track_caller]
 fn assert_error(source: &str, location: &str, message: &str) {

@@ -1,8 +1,29 @@
 //! Shared by the integration tests: random parameter sets of the paper model
-//! that put a chosen domain in a chosen damping regime.
+//! that put a chosen domain in a chosen damping regime, and the independent
+//! references the tests compare with. Each reference is here once and is
+//! written for the tests from the textbook, not copied from `src/` (a check
+//! must not share the mistakes of the code it checks); `tests/references.rs`
+//! tests them against closed-form solutions.
+//!
+//! * `dopri`: the Dormand–Prince 5(4) tableau as data, a generic stepper and
+//!   its dense output.
+//! * `events`: a reference simulation of a piecewise model with events and
+//!   stick, on `dopri` and `roots`.
+//! * `roots`: scanning and bisection.
+//! * `taylor`: a Taylor-series integrator of one domain's ODE, its
+//!   transition matrix, and the modal form for two real exponents.
+//! * `graze`: near-grazing starts for the paper model (test inputs).
+//! * `counting`: a counting global allocator for the allocation tests.
+//! * `reference`: the reference periodic motions of `../shared/reference/`.
 #![allow(dead_code)]
 
+pub mod counting;
+pub mod dopri;
+pub mod events;
+pub mod graze;
 pub mod reference;
+pub mod roots;
+pub mod taylor;
 
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

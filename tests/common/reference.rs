@@ -1,7 +1,12 @@
 //! The reference periodic motions of `../shared/reference/orbits.json`.
 
 use serde_json::Value;
+use stickslip::dynamics::simulate::Segment;
+use stickslip::dynamics::simulate::{Location, SimOptions, Simulator};
+use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::SwitchingPoint;
+use stickslip::orbit::structure::Structure;
+use stickslip::Model;
 
 /// One reference motion.
 pub struct Reference {
@@ -15,6 +20,36 @@ pub struct Reference {
     pub points: Vec<SwitchingPoint>,
     /// Eigenvalues `[re, im]` of the Poincaré-map Jacobian.
     pub eigenvalues: Vec<[f64; 2]>,
+}
+
+impl Reference {
+    /// The paper model's simulator at this motion's `W` and `Q0`.
+    pub fn simulator(&self) -> Simulator<Paper> {
+        let p = Params {
+            W: self.w,
+            Q0: self.q0,
+            ..Params::default()
+        };
+        Simulator::new(p, SimOptions::default()).expect("valid parameters")
+    }
+
+    /// The motion's mapping structure.
+    pub fn structure(&self) -> Structure {
+        Structure::parse(Paper::INFO, &self.structure, self.periods).expect("structure")
+    }
+}
+
+/// The segment that starts mapping `idx` at `pt` (built directly: on a
+/// boundary, `Simulator::start` would pick the side from the vector field).
+pub fn segment_for<M: Model>(sim: &Simulator<M>, idx: usize, pt: SwitchingPoint) -> Segment {
+    let mi = M::INFO.mappings[idx];
+    Segment {
+        x: pt.x,
+        v: sim.velocity(mi.from),
+        phase: pt.phase,
+        location: mi.domain.map_or(Location::Stick, Location::Domain),
+        search_from: pt.phase,
+    }
 }
 
 /// Every reference motion.
