@@ -135,12 +135,28 @@ impl ParamRange {
     }
 }
 
-/// Run `visitor` with the compiled-in model `name` (`paper`, or `model::scene`).
-pub fn with_model<V, T>(name: &str, visitor: V) -> Result<T, CliError>
-where
-    V: ModelVisitor<Output = Result<T, CliError>>,
-{
-    models::visit(name, visitor).unwrap_or_else(|| {
+/// A subcommand that runs with a piecewise-linear model chosen by name.
+pub trait WithModel {
+    /// What it returns.
+    type Output;
+    /// Run with model `M`.
+    fn run<M: Model>(self) -> Result<Self::Output, CliError>;
+}
+
+/// The registry's visitor for a [`WithModel`] command: piecewise models only
+/// (a smooth-law model is, to these commands, an unknown name).
+struct Piecewise<C>(C);
+
+impl<C: WithModel> ModelVisitor for Piecewise<C> {
+    type Output = Result<C::Output, CliError>;
+    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+        Some(self.0.run::<M>())
+    }
+}
+
+/// Run `command` with the compiled-in model `name` (`paper`, or `model::scene`).
+pub fn with_model<C: WithModel>(name: &str, command: C) -> Result<C::Output, CliError> {
+    models::visit(name, Piecewise(command)).unwrap_or_else(|| {
         Err(CliError::UnknownModel {
             name: name.to_string(),
         })

@@ -2,9 +2,9 @@
 
 use clap::Args;
 use stickslip::output::describe::describe;
-use stickslip::{Model, ModelVisitor};
+use stickslip::Model;
 
-use super::args::{with_model, Assignments};
+use super::args::{with_model, Assignments, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -34,14 +34,8 @@ struct Describe {
     json: bool,
 }
 
-impl ModelVisitor for Describe {
-    type Output = Result<String, CliError>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
-        Some(self.run::<M>())
-    }
-}
-
-impl Describe {
+impl WithModel for Describe {
+    type Output = String;
     fn run<M: Model>(self) -> Result<String, CliError> {
         let p = self.set.params::<M>()?;
         let d = describe::<M>(&p);

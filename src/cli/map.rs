@@ -7,9 +7,9 @@ use clap::Args;
 use stickslip::output::figure::map::plot_map;
 use stickslip::output::map_summary;
 use stickslip::study::map::{run_map, GridAxis, MapOptions, Shard};
-use stickslip::{Model, ModelVisitor};
+use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments};
+use super::args::{check_plot_path, with_model, Assignments, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -53,14 +53,8 @@ struct MapCmd {
     args: MapArgs,
 }
 
-impl ModelVisitor for MapCmd {
-    type Output = Result<Outcome, CliError>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
-        Some(self.run::<M>())
-    }
-}
-
-impl MapCmd {
+impl WithModel for MapCmd {
+    type Output = Outcome;
     fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
         let x = GridAxis::parse_for::<M>(&self.args.x)?;

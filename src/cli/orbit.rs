@@ -14,9 +14,9 @@ use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::output::history::History;
 use stickslip::output::report::Report;
-use stickslip::{MappingKind, Model, ModelVisitor};
+use stickslip::{MappingKind, Model};
 
-use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs};
+use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 
@@ -70,14 +70,8 @@ struct Orbit {
     output: OutputArgs,
 }
 
-impl ModelVisitor for Orbit {
-    type Output = Result<Outcome, CliError>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
-        Some(self.run::<M>())
-    }
-}
-
-impl Orbit {
+impl WithModel for Orbit {
+    type Output = Outcome;
     fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let info = M::INFO;
         let p = self.set.params::<M>()?;

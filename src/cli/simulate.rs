@@ -10,9 +10,9 @@ use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::motion::OrbitError;
 use stickslip::output::history::History;
 use stickslip::output::report::Report;
-use stickslip::{Model, ModelVisitor};
+use stickslip::Model;
 
-use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs};
+use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 
@@ -59,14 +59,8 @@ struct Simulate {
     output: OutputArgs,
 }
 
-impl ModelVisitor for Simulate {
-    type Output = Result<Outcome, CliError>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
-        Some(self.run::<M>())
-    }
-}
-
-impl Simulate {
+impl WithModel for Simulate {
+    type Output = Outcome;
     fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let info = M::INFO;
         let p = self.set.params::<M>()?;

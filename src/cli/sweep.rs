@@ -7,9 +7,9 @@ use clap::Args;
 use stickslip::output::figure::sweep::plot_sweep;
 use stickslip::output::sweep_table;
 use stickslip::study::sweep::sweep;
-use stickslip::{Model, ModelVisitor};
+use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, ParamRange};
+use super::args::{check_plot_path, with_model, Assignments, ParamRange, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -44,14 +44,8 @@ struct SweepCmd {
     args: SweepArgs,
 }
 
-impl ModelVisitor for SweepCmd {
-    type Output = Result<Outcome, CliError>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
-        Some(self.run::<M>())
-    }
-}
-
-impl SweepCmd {
+impl WithModel for SweepCmd {
+    type Output = Outcome;
     fn run<M: Model>(self) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
         let ParamRange {

@@ -53,6 +53,43 @@ pub struct TradeRow {
     pub note: Option<String>,
 }
 
+impl TradeRow {
+    /// The row of one method: its errors against `reference`, or the error
+    /// that stopped it (`note`, every number NaN).
+    fn measured(
+        method: &str,
+        pieces: Option<u32>,
+        tol: Option<f64>,
+        result: Result<(Fingerprint, String, f64), String>,
+        reference: &Fingerprint,
+    ) -> Self {
+        let row = |structure: String, seconds: f64, errors: [f64; 4], note: Option<String>| Self {
+            method: method.into(),
+            pieces,
+            tol,
+            structure,
+            seconds,
+            error_phase: errors[0],
+            error_x: errors[1],
+            error_amplitude: errors[2],
+            error: errors[3],
+            note,
+        };
+        match result {
+            Ok((fp, structure, seconds)) => {
+                let (ep, ex, ea, note) = compare(&fp, reference);
+                let error = if note.is_some() {
+                    f64::NAN
+                } else {
+                    ep.max(ex).max(ea)
+                };
+                row(structure, seconds, [ep, ex, ea, error], note)
+            }
+            Err(e) => row("-".into(), f64::NAN, [f64::NAN; 4], Some(e)),
+        }
+    }
+}
+
 /// The whole measurement.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Trade {
@@ -296,74 +333,24 @@ impl Measure<'_> {
             integrated::<S>(p, self.reference_tol, periods).map_err(TradeError::Reference)?;
         let mut rows = Vec::new();
         for (n, result) in pw {
-            rows.push(match result {
-                Ok((fp, structure, seconds)) => {
-                    let (ep, ex, ea, note) = compare(&fp, &reference);
-                    TradeRow {
-                        method: "pieces".into(),
-                        pieces: Some(n),
-                        tol: None,
-                        structure,
-                        seconds,
-                        error_phase: ep,
-                        error_x: ex,
-                        error_amplitude: ea,
-                        error: if note.is_some() {
-                            f64::NAN
-                        } else {
-                            ep.max(ex).max(ea)
-                        },
-                        note,
-                    }
-                }
-                Err(e) => TradeRow {
-                    method: "pieces".into(),
-                    pieces: Some(n),
-                    tol: None,
-                    structure: "-".into(),
-                    seconds: f64::NAN,
-                    error_phase: f64::NAN,
-                    error_x: f64::NAN,
-                    error_amplitude: f64::NAN,
-                    error: f64::NAN,
-                    note: Some(e),
-                },
-            });
+            rows.push(TradeRow::measured(
+                "pieces",
+                Some(n),
+                None,
+                result,
+                &reference,
+            ));
         }
         for &tol in self.tols {
-            rows.push(match integrated::<S>(p, tol, periods) {
-                Ok((fp, seconds)) => {
-                    let (ep, ex, ea, note) = compare(&fp, &reference);
-                    TradeRow {
-                        method: "integrator".into(),
-                        pieces: None,
-                        tol: Some(tol),
-                        structure: "-".into(),
-                        seconds,
-                        error_phase: ep,
-                        error_x: ex,
-                        error_amplitude: ea,
-                        error: if note.is_some() {
-                            f64::NAN
-                        } else {
-                            ep.max(ex).max(ea)
-                        },
-                        note,
-                    }
-                }
-                Err(e) => TradeRow {
-                    method: "integrator".into(),
-                    pieces: None,
-                    tol: Some(tol),
-                    structure: "-".into(),
-                    seconds: f64::NAN,
-                    error_phase: f64::NAN,
-                    error_x: f64::NAN,
-                    error_amplitude: f64::NAN,
-                    error: f64::NAN,
-                    note: Some(e),
-                },
-            });
+            let result = integrated::<S>(p, tol, periods)
+                .map(|(fp, seconds)| (fp, "-".to_string(), seconds));
+            rows.push(TradeRow::measured(
+                "integrator",
+                None,
+                Some(tol),
+                result,
+                &reference,
+            ));
         }
         let order = convergence_order(&rows);
         Ok(Trade {
