@@ -7,7 +7,7 @@
 #   scripts/compare-outputs.sh BEFORE [AFTER]     (AFTER defaults to HEAD)
 #
 # Wall times are the only output allowed to differ: `map`/`merge` print
-# `in 1.23 s`, `trade` a `time [ms]` column and `"seconds"` in JSON; they are
+# `in 1.23 s`, `trade` a `time [ms]` column (its width too) and `"seconds"` in JSON; they are
 # replaced by `<time>` before comparing.
 #
 # Each commit is checked out in a temporary worktree and built in release
@@ -98,7 +98,7 @@ run_all() { # commit label
 
 normalise() { # file -> file with wall times replaced
   sed -E -e 's/ in [0-9.]+ (s|ms)$/ in <time> \1/' \
-         -e 's/^((pieces|integrator) +[^ ]+ +[^ ]+ +)[0-9.]+/\1<time>/' \
+         -e 's/^((pieces|integrator) +[^ ]+ +[^ ]+) +[0-9.]+/\1 <time>/' \
          -e 's/"seconds": [0-9.eE+-]+/"seconds": <time>/g' "$1"
 }
 
