@@ -6,7 +6,7 @@
 //!   invoking crate's `Cargo.toml`; errors point at the path literal and name
 //!   `file:line:col` in the message.
 //!
-//! Both expand to the module [`registry::module`](crate::emit::registry::module) wraps, the one `build.rs`
+//! Both expand to the module [`registry::module`] wraps, the one `build.rs`
 //! writes.
 
 use proc_macro2::{Span, TokenStream};

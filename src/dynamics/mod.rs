@@ -7,7 +7,7 @@
 //! * [`integrate`] — Dormand–Prince integration of a smooth friction law, with
 //!   belt-speed events and stick by force criteria.
 //!
-//! Depends only on [`crate::model`].
+//! Depends only on [`crate::model`](mod@crate::model).
 
 pub mod crossing;
 pub mod integrate;

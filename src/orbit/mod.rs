@@ -8,7 +8,7 @@
 //! * [`motion`] — a solved, checked periodic motion;
 //! * [`attractor`] — what a simulation settles on: a motion, a stick, a family.
 //!
-//! Depends on [`crate::model`] and [`crate::dynamics`].
+//! Depends on [`crate::model`](mod@crate::model) and [`crate::dynamics`].
 
 pub mod admissible;
 pub mod attractor;

@@ -1,12 +1,12 @@
 //! Last pass: equations → Rust tokens. Pure: every fact it needs was
 //! established by [`crate::expand`] and [`crate::equations`]; it cannot fail.
 //!
-//! * [`expression`] — graph nodes → straight-line Rust;
-//! * [`params`] — the `Params` struct and its `ParamSet` impl;
-//! * [`info`] — the static `INFO` tables;
-//! * [`flow`] — flows, vector fields, residuals, Jacobians, stick forces;
-//! * [`model_impl`] — the `Model` trait impl;
-//! * [`smooth`] — the type of a model with a smooth law;
+//! * `expression` — graph nodes → straight-line Rust;
+//! * `params` — the `Params` struct and its `ParamSet` impl;
+//! * `info` — the static `INFO` tables;
+//! * `flow` — flows, vector fields, residuals, Jacobians, stick forces;
+//! * `model_impl` — the `Model` trait impl;
+//! * `smooth` — the type of a model with a smooth law;
 //! * [`registry`] — around the models: the module wrapper both drivers use
 //!   and the catalogue of the compiled-in models (`ALL`, `visit`).
 

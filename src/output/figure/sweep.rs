@@ -94,7 +94,7 @@ pub struct Tag {
 
 /// The tags of transitions whose lines stand at pixel columns `lines`
 /// (numbered 1, 2, … in this order, which is increasing), over a panel
-/// spanning `[left, right)`: runs within [`SAME_PIXEL`] of their first share
+/// spanning `[left, right)`: runs within `SAME_PIXEL` of their first share
 /// a tag, and tags are stacked in rows ([`stack`]) so none overlaps another.
 pub fn tags(lines: &[i32], left: i32, right: i32) -> Vec<Tag> {
     let mut groups: Vec<(usize, usize, i32)> = Vec::new();

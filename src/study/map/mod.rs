@@ -3,7 +3,7 @@
 //!
 //! At every grid point the motion is simulated from two starts (rest, and a
 //! state above the stick boundary half a forcing period later) until it
-//! settles ([`attractor::find`]); the distinct results — periodic motions
+//! settles ([`attractor::find`](crate::orbit::attractor::find)); the distinct results — periodic motions
 //! named by structure and period, or `NM` — are the point's motions, so
 //! coexisting motions (the flow barrier of SPEC §10) show up as a set.
 //!
