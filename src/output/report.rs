@@ -235,6 +235,19 @@ pub struct NotConvergedReport {
     pub structure: String,
 }
 
+impl NotConvergedReport {
+    /// `Newton did not converge for P_{…}: reason` (the text report's first
+    /// line and the CLI's failure message).
+    pub fn headline(&self) -> String {
+        let target = if self.structure.is_empty() {
+            String::new()
+        } else {
+            format!(" for {}", self.structure)
+        };
+        format!("Newton did not converge{target}: {}", self.reason)
+    }
+}
+
 fn newton_of(t: &Termination, residual: impl FnOnce() -> Option<f64>) -> (NewtonReport, String) {
     match t {
         Termination::Converged {
@@ -426,15 +439,7 @@ impl Report {
                     r.structure
                 ))
             }
-            Report::NotConverged(r) => Some(format!(
-                "Newton did not converge{}: {}",
-                if r.structure.is_empty() {
-                    String::new()
-                } else {
-                    format!(" for {}", r.structure)
-                },
-                r.reason
-            )),
+            Report::NotConverged(r) => Some(r.headline()),
         }
     }
 

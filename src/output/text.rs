@@ -165,16 +165,7 @@ impl fmt::Display for Report {
                 r.model, r.structure, r.period, r.stick, r.slip, r.x, r.v, r.onset
             ),
             Report::NotConverged(r) => {
-                writeln!(
-                    f,
-                    "Newton did not converge{}: {}",
-                    if r.structure.is_empty() {
-                        String::new()
-                    } else {
-                        format!(" for {}", r.structure)
-                    },
-                    r.reason
-                )?;
+                writeln!(f, "{}", r.headline())?;
                 writeln!(
                     f,
                     "iterations: {}, residual: {}",

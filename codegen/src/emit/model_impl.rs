@@ -21,17 +21,13 @@ pub(super) fn model_impl(type_ident: &Ident, type_doc: &[String], f: &Functions)
         static_bound,
         ..
     } = f;
+    let base = friction_oscillator_impl(type_ident, quote!(oscillator(p)));
     quote! {
         #type_doc
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #type_ident;
 
-        impl ::stickslip::FrictionOscillator for #type_ident {
-            type Params = Params;
-            const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
-            #[inline]
-            fn oscillator(p: &Params) -> ::stickslip::Oscillator { oscillator(p) }
-        }
+        #base
 
         impl ::stickslip::Model for #type_ident {
             const INFO: &'static ::stickslip::ModelInfo = &INFO;
@@ -63,6 +59,19 @@ pub(super) fn model_impl(type_ident: &Ident, type_doc: &[String], f: &Functions)
             fn mapping(p: &Params, mapping: usize, x0: f64, phi0: f64, x1: f64, phi1: f64) -> ::stickslip::MappingEval {
                 match mapping { #mapping _ => ::stickslip::MappingEval::NAN }
             }
+        }
+    }
+}
+
+/// `impl FrictionOscillator`, the base trait of every generated model: its
+/// `Params`, its identity (in `INFO`) and `oscillator`, whose body is given.
+pub(super) fn friction_oscillator_impl(type_ident: &Ident, oscillator: TokenStream) -> TokenStream {
+    quote! {
+        impl ::stickslip::FrictionOscillator for #type_ident {
+            type Params = Params;
+            const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+            #[inline]
+            fn oscillator(p: &Params) -> ::stickslip::Oscillator { #oscillator }
         }
     }
 }

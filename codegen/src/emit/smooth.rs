@@ -6,6 +6,7 @@ use proc_macro2::TokenStream;
 use quote::quote;
 
 use super::expression::{doc, doc1, literal, straight_line};
+use super::model_impl::friction_oscillator_impl;
 use super::params::{free_idents, param_infos, params_items, smooth_check_fn};
 use crate::equations::SmoothEquations;
 use crate::lowered::LAW_V;
@@ -31,6 +32,13 @@ pub(super) fn smooth_items(e: &SmoothEquations) -> TokenStream {
     let params_doc = doc1("Run-time parameters of the smooth model.");
     let check = smooth_check_fn(g, &pnames, &e.conditions);
     let params_items = params_items(&s.params, &free, &params_doc, &check);
+    let base = friction_oscillator_impl(
+        type_ident,
+        quote! {
+            #ostmts
+            ::stickslip::Oscillator { mass: #om, damping: #od, stiffness: #oc, amplitude: #oa, frequency: #ow }
+        },
+    );
     quote! {
         #params_items
 
@@ -53,15 +61,7 @@ pub(super) fn smooth_items(e: &SmoothEquations) -> TokenStream {
         #[derive(Clone, Copy, Debug, Default)]
         pub struct #type_ident;
 
-        impl ::stickslip::FrictionOscillator for #type_ident {
-            type Params = Params;
-            const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
-            #[inline]
-            fn oscillator(p: &Params) -> ::stickslip::Oscillator {
-                #ostmts
-                ::stickslip::Oscillator { mass: #om, damping: #od, stiffness: #oc, amplitude: #oa, frequency: #ow }
-            }
-        }
+        #base
 
         impl ::stickslip::model::smooth::SmoothModel for #type_ident {
             const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &INFO;
