@@ -19,6 +19,7 @@ pub use nalgebra;
 pub mod model;
 pub mod models;
 
+pub mod bifurcation;
 pub mod dynamics;
 pub mod orbit;
 pub mod output;

@@ -28,21 +28,7 @@ use crate::orbit::structure::Structure;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
-/// What kind of transition ends a motion (SPEC §3).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum TransitionKind {
-    /// An arc touches a boundary tangentially (GB in the paper).
-    Grazing,
-    /// A passing flow starts to stick.
-    StickOnset,
-    /// A stick shrinks to nothing or ends early.
-    StickVanishing,
-    /// A sticking arrival starts to pass through the stick boundary.
-    PassableOnset,
-    /// An eigenvalue leaves the unit circle.
-    Eigenvalue,
-}
+pub use crate::bifurcation::TransitionKind;
 
 /// A located transition.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -102,6 +88,108 @@ pub struct Sweep {
     pub points: Vec<SweepPoint>,
     /// Transitions, ascending.
     pub transitions: Vec<Transition>,
+    /// Every branch followed, stable and unstable parts, in the order found.
+    pub branches: Vec<BranchSummary>,
+    /// The eigenvalue bifurcations on the branches, ascending.
+    pub bifurcations: Vec<BifurcationSummary>,
+}
+
+/// One computed point of a branch.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchSample {
+    /// The parameter value (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// `W t_0 mod 2π` of the first switching point.
+    #[serde(rename = "start_Wt")]
+    pub start_wt: f64,
+    /// `x_0`.
+    pub start_x: f64,
+    /// Eigenvalues of `DP`, `[re, im]`, largest modulus first.
+    pub eigenvalues: Vec<[f64; 2]>,
+    /// Both eigenvalues inside the unit circle.
+    pub stable: bool,
+    /// Every switching point (phase mod 2π, x) — for the figures.
+    #[serde(skip)]
+    pub points: Vec<SwitchingPoint>,
+}
+
+/// Why a branch ends, and where.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchEndSummary {
+    /// The parameter value (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// `parameter_bound`, a non-smooth transition's kind (`grazing`,
+    /// `stick_onset`, `stick_vanishing`, `passable_onset`), `closed_loop`,
+    /// `newton_failure` or `max_points`.
+    pub reason: String,
+    /// For a transition, the boundary involved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub boundary: Option<String>,
+    /// For `newton_failure`, why Newton failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+}
+
+/// A branch of periodic motions of one structure.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchSummary {
+    /// Its number, referred to by `bifurcations[].branch` and `born`.
+    pub id: usize,
+    /// `P_{...}`.
+    pub structure: String,
+    /// Forcing periods per cycle.
+    #[serde(rename = "N")]
+    pub n: u32,
+    /// Its points in arclength order (a branch may turn back at folds).
+    pub points: Vec<BranchSample>,
+    /// How it ends at each side (two ends; one for a branch born at a
+    /// bifurcation and followed away from it; none for a closed loop).
+    pub ends: Vec<BranchEndSummary>,
+}
+
+/// An eigenvalue bifurcation on a branch.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BifurcationSummary {
+    /// The parameter value (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// `fold`, `branch_point`, `period_doubling` or `neimark_sacker`.
+    pub kind: TransitionKind,
+    /// The motion's structure.
+    pub structure: String,
+    /// Its forcing periods per cycle.
+    #[serde(rename = "N")]
+    pub n: u32,
+    /// The critical eigenvalue `[re, im]` (`im ≥ 0`).
+    pub eigenvalue: [f64; 2],
+    /// The branch it lies on.
+    pub branch: usize,
+    /// The branches born there.
+    pub born: Vec<usize>,
+    /// `W t_0 mod 2π` of the motion there.
+    #[serde(rename = "start_Wt")]
+    pub start_wt: f64,
+    /// `x_0` of the motion there.
+    pub start_x: f64,
+}
+
+impl Sweep {
+    /// Today's view without unstable motions: the unstable points of every
+    /// branch and the unstable motions at the grid points are dropped
+    /// (branches left with no point go too); transitions and bifurcations stay.
+    pub fn stable_only(&self) -> Sweep {
+        let mut out = self.clone();
+        for p in &mut out.points {
+            p.motions.retain(|m| m.stable);
+        }
+        for b in &mut out.branches {
+            b.points.retain(|q| q.stable);
+        }
+        out.branches.retain(|b| !b.points.is_empty());
+        out
+    }
 }
 
 /// Why a sweep could not run.
@@ -238,9 +326,11 @@ enum Watch {
     Stability,
 }
 
-fn kind_of(watch: Watch) -> TransitionKind {
+fn kind_of(watch: Watch, eigenvalue: [f64; 2]) -> TransitionKind {
     match watch {
-        Watch::Stability => TransitionKind::Eigenvalue,
+        Watch::Stability if eigenvalue[1] != 0.0 => TransitionKind::NeimarkSacker,
+        Watch::Stability if eigenvalue[0] > 0.0 => TransitionKind::Fold,
+        Watch::Stability => TransitionKind::PeriodDoubling,
         Watch::Condition { kind, .. } => match kind {
             ViolationKind::Interior | ViolationKind::Arrival | ViolationKind::Departure => {
                 TransitionKind::Grazing
@@ -490,7 +580,10 @@ fn follow<M: Model>(
                         value: edge,
                         from: structure.notation(info),
                         to,
-                        kind: kind_of(watch),
+                        kind: kind_of(
+                            watch,
+                            good_m.stability.map_or([0.0; 2], |st| st.eigenvalues[0]),
+                        ),
                         boundary,
                     });
                     branch = next_branch;
@@ -720,5 +813,7 @@ pub fn sweep<M: Model>(
         param: name.to_string(),
         points,
         transitions,
+        branches: Vec::new(),
+        bifurcations: Vec::new(),
     })
 }

@@ -51,7 +51,10 @@ fn kind_name(k: TransitionKind) -> &'static str {
         TransitionKind::StickOnset => "stick onset",
         TransitionKind::StickVanishing => "stick vanishing",
         TransitionKind::PassableOnset => "passable onset",
-        TransitionKind::Eigenvalue => "|λ| = 1",
+        TransitionKind::Fold => "fold (λ = 1)",
+        TransitionKind::BranchPoint => "branch point (λ = 1)",
+        TransitionKind::PeriodDoubling => "period doubling (λ = −1)",
+        TransitionKind::NeimarkSacker => "Neimark–Sacker (|λ| = 1)",
     }
 }
 

@@ -1,0 +1,81 @@
+//! Bifurcation analysis along one parameter: branches of periodic motions
+//! followed by pseudo-arclength continuation through folds, their unstable
+//! parts kept, the eigenvalue bifurcations (fold, branch point, period
+//! doubling, Neimark–Sacker) located by test functions on the eigenvalues of
+//! `DP`, the branches born there, and the non-smooth transitions (SPEC §3)
+//! that end a branch.
+
+use serde::Serialize;
+
+/// What happens to a motion at a point of a branch: a non-smooth transition
+/// (an admissibility condition of SPEC §6 starts to fail) or an eigenvalue
+/// bifurcation (an eigenvalue of `DP` reaches the unit circle).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TransitionKind {
+    /// An arc touches a boundary tangentially (GB in the paper).
+    Grazing,
+    /// A passing flow starts to stick.
+    StickOnset,
+    /// A stick shrinks to nothing or ends early.
+    StickVanishing,
+    /// A sticking arrival starts to pass through the stick boundary.
+    PassableOnset,
+    /// Eigenvalue +1 at a turning point of the branch (saddle-node).
+    Fold,
+    /// Eigenvalue +1 where the branch goes on and another crosses it
+    /// (symmetry-breaking pitchfork).
+    BranchPoint,
+    /// Eigenvalue −1: a motion of twice the period is born.
+    PeriodDoubling,
+    /// A complex pair of eigenvalues on the unit circle: a torus is born.
+    NeimarkSacker,
+}
+
+impl TransitionKind {
+    /// The name used in JSON and in the text report (`stick_onset`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            TransitionKind::Grazing => "grazing",
+            TransitionKind::StickOnset => "stick_onset",
+            TransitionKind::StickVanishing => "stick_vanishing",
+            TransitionKind::PassableOnset => "passable_onset",
+            TransitionKind::Fold => "fold",
+            TransitionKind::BranchPoint => "branch_point",
+            TransitionKind::PeriodDoubling => "period_doubling",
+            TransitionKind::NeimarkSacker => "neimark_sacker",
+        }
+    }
+
+    /// Whether this is an eigenvalue bifurcation (not a non-smooth transition).
+    pub fn is_eigenvalue(self) -> bool {
+        matches!(
+            self,
+            TransitionKind::Fold
+                | TransitionKind::BranchPoint
+                | TransitionKind::PeriodDoubling
+                | TransitionKind::NeimarkSacker
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_the_json_names() {
+        for k in [
+            TransitionKind::Grazing,
+            TransitionKind::StickOnset,
+            TransitionKind::StickVanishing,
+            TransitionKind::PassableOnset,
+            TransitionKind::Fold,
+            TransitionKind::BranchPoint,
+            TransitionKind::PeriodDoubling,
+            TransitionKind::NeimarkSacker,
+        ] {
+            assert_eq!(serde_json::to_value(k).unwrap(), k.name());
+        }
+    }
+}
