@@ -5,6 +5,7 @@
 #   benches/sweep-vs-scipy.sh            # 20 stickslip runs, one Python sweep
 #   RUNS=50 benches/sweep-vs-scipy.sh
 #   PYTHON=/path/to/python benches/sweep-vs-scipy.sh   # skip the venv
+#   SCIPY_ARGS="--W 3,5" RUNS=3 benches/sweep-vs-scipy.sh   # a quick try of the script (no ratio to quote)
 #
 # 1. builds the release CLI;
 # 2. times `stickslip sweep --model paper --param W=0.2:9:200 --set Q0=70` as a
@@ -76,7 +77,8 @@ printf 'stickslip: best %.1f ms, median %.1f ms, worst %.1f ms wall; mean CPU (u
 
 echo "scipy: benches/scipy/sweep.py (once: 200 W values, DOP853 rtol 1e-10, events, steady state)"
 t0=$(now)
-/usr/bin/time -f "%U %S" -o "$out/time.txt" "$PYTHON" benches/scipy/sweep.py --out "$out/scipy.json"
+# shellcheck disable=SC2086  # SCIPY_ARGS is a list of words
+/usr/bin/time -f "%U %S" -o "$out/time.txt" "$PYTHON" benches/scipy/sweep.py --out "$out/scipy.json" ${SCIPY_ARGS:-}
 t1=$(now)
 py_wall=$(echo "$t1 - $t0" | bc -l)
 py_cpu=$(awk '{ print $1 + $2 }' "$out/time.txt")
