@@ -334,6 +334,11 @@ def settle(model, x0, y0, t0, max_periods, tol, max_n, rtol, atol, chunk):
         nxt = cycle[(i + 1) % len(cycle)]
         j = e[4]
         mappings.append(f"{j}_{nxt[2]}{e[2]}")
+    # Start the cycle where stickslip's structures start: at the flow in
+    # Omega4 (4_33) if there is one, else at the smallest name.
+    first = mappings.index("4_33") if "4_33" in mappings else mappings.index(min(mappings))
+    mappings = mappings[first:] + mappings[:first]
+    cycle = cycle[first:] + cycle[:first]
     info.update(
         kind="periodic",
         structure="P_{" + " ".join(reversed(mappings)) + "}",
