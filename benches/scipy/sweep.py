@@ -142,21 +142,21 @@ class Model:
 
     def domain_of(self, t, x, y):
         """Domain (or stick) of a state, deciding on a boundary by the criteria."""
-        if y > self.V1:
-            return 2
-        if y > self.V:
-            return 1
         if y == self.V:
             f = self.fnf(t, x)
             if abs(f) < self.as_:
                 return STICK
             return 1 if f > 0 else 3
-        if y > self.V2:
-            return 3
-        if y == self.V2:
-            return 3 if self.accel(4, t, x, y) > 0 else 4
         if y == self.V1:
             return 2 if self.accel(1, t, x, y) > 0 else 1
+        if y == self.V2:
+            return 3 if self.accel(4, t, x, y) > 0 else 4
+        if y > self.V1:
+            return 2
+        if y > self.V:
+            return 1
+        if y > self.V2:
+            return 3
         return 4
 
     def accel(self, j, t, x, y):
