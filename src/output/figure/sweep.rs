@@ -288,16 +288,19 @@ impl<'a> SweepFigure<'a> {
                 .iter()
                 .any(|p| p.motions.iter().any(|m| m.stable == stable))
         };
-        if drawn(true) || dots(true) {
+        if drawn(true) {
             lines.push(Entry::new(
                 Mark::Line(SAMPLE_GREY),
-                "stable: solid line (a dot at a grid point)",
+                "branch, stable (a dot: a motion at a grid point)",
             ));
         }
-        if unstable && (drawn(false) || dots(false)) {
+        if unstable && drawn(false) {
+            lines.push(Entry::new(Mark::Dashed(SAMPLE_GREY), "branch, unstable"));
+        }
+        if unstable && dots(false) {
             lines.push(Entry::new(
-                Mark::Dashed(SAMPLE_GREY),
-                "unstable: dashed line (a ring at a grid point)",
+                Mark::Hollow(SAMPLE_GREY),
+                "an unstable motion at a grid point",
             ));
         }
         let mut kinds: Vec<TransitionKind> = Vec::new();
