@@ -31,6 +31,11 @@ pub struct SweepArgs {
     /// Draw the bifurcation diagram into FILE (.svg or .png).
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// Leave out unstable motions: the branches' unstable stretches and the
+    /// unstable motions at the grid points (the view of sweeps before
+    /// arclength continuation). Bifurcations and transitions stay.
+    #[arg(long)]
+    no_unstable: bool,
 }
 
 /// The sweep as text or JSON, and its figure.
@@ -56,14 +61,19 @@ impl WithModel for SweepCmd {
         } = ParamRange::parse(&self.args.param)?;
         let base = set.params::<M>()?;
         let sw = sweep::<M>(base, &name, from, to, count, Default::default())?;
+        let unstable = !self.args.no_unstable;
         if let Some(path) = &self.args.plot {
             let title = format!("{} sweep of {name} ({set})", M::INFO.name);
-            plot_sweep(&sw, &title, path).map_err(CliError::Figure)?;
+            plot_sweep(&sw, &title, path, unstable).map_err(CliError::Figure)?;
         }
         let stdout = if self.args.json {
-            sweep_table::json(&sw)?
+            if unstable {
+                sweep_table::json(&sw)?
+            } else {
+                sweep_table::json(&sw.stable_only())?
+            }
         } else {
-            sweep_table::text(&sw, from, to, count, &set.to_string())
+            sweep_table::text(&sw, from, to, count, &set.to_string(), unstable)
         };
         Ok(Outcome::ok(stdout))
     }

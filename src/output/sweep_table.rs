@@ -1,11 +1,113 @@
-//! A sweep as text (transitions, then the motions at each grid point) or as
-//! JSON (the schema in the README, "Bifurcations and maps").
+//! A sweep as text (transitions, bifurcations, branches, then the motions at
+//! each grid point) or as JSON (the schema in the README, "Bifurcations and
+//! maps").
 
-use crate::study::sweep::Sweep;
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+use crate::study::sweep::{BifurcationSummary, BranchSample, BranchSummary, Sweep};
+
+/// The stretches of a branch along which its motion is stable or unstable.
+///
+/// A branch's points are in arclength order; a run is a maximal stretch of
+/// consecutive points of one stability. Where a bifurcation of the branch
+/// lies between two runs' adjoining points (in the parameter and the
+/// motion's first switching point: at a fold the parameter turns back),
+/// both runs end and start at it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Run {
+    /// Whether the motion is stable along it.
+    pub stable: bool,
+    /// Indices of its first and last point in the branch's `points`.
+    pub first: usize,
+    /// See `first`.
+    pub last: usize,
+    /// The parameter where it starts and ends, in arclength order.
+    pub from: f64,
+    /// See `from`.
+    pub to: f64,
+    /// The bifurcation where it starts, if one separates it from the run before.
+    pub from_kind: Option<&'static str>,
+    /// The bifurcation where it ends, if one separates it from the run after.
+    pub to_kind: Option<&'static str>,
+}
+
+/// The runs of `branch` in arclength order; `bifurcations` of the whole
+/// sweep (those on other branches are ignored).
+pub fn runs(branch: &BranchSummary, bifurcations: &[BifurcationSummary]) -> Vec<Run> {
+    let pts = &branch.points;
+    let mut out: Vec<Run> = Vec::new();
+    for (i, p) in pts.iter().enumerate() {
+        match out.last_mut() {
+            Some(r) if r.stable == p.stable => {
+                r.last = i;
+                r.to = p.value;
+            }
+            _ => out.push(Run {
+                stable: p.stable,
+                first: i,
+                last: i,
+                from: p.value,
+                to: p.value,
+                from_kind: None,
+                to_kind: None,
+            }),
+        }
+    }
+    for k in 1..out.len() {
+        let (a, b) = (&pts[out[k - 1].last], &pts[out[k].first]);
+        let step = apart(a.value, a.start_x, a.start_wt, b);
+        // The bifurcation of the branch between the two points: at a fold
+        // the parameter turns back, so it is found by the motion as well.
+        let between = bifurcations
+            .iter()
+            .filter(|f| f.branch == branch.id)
+            .map(|f| {
+                let d = apart(f.value, f.start_x, f.start_wt, a)
+                    + apart(f.value, f.start_x, f.start_wt, b);
+                (d, f)
+            })
+            .filter(|(d, _)| *d <= 1.5 * step + 1e-9)
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        if let Some((_, f)) = between {
+            out[k - 1].to = f.value;
+            out[k - 1].to_kind = Some(f.kind.name());
+            out[k].from = f.value;
+            out[k].from_kind = Some(f.kind.name());
+        }
+    }
+    out
+}
+
+/// How far the motion at (`value`, `x`, `phase`) is from the point `p`: the
+/// sum of the differences in the parameter, the first switching point's
+/// displacement and its phase (round the circle).
+fn apart(value: f64, x: f64, phase: f64, p: &BranchSample) -> f64 {
+    let dphase = (phase - p.start_wt).rem_euclid(TAU);
+    (value - p.value).abs() + (x - p.start_x).abs() + dphase.min(TAU - dphase)
+}
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+/// `P_{...}` with `^N` when `N > 1`.
+fn with_periods(structure: &str, n: u32) -> String {
+    if n > 1 {
+        format!("{structure}^{n}")
+    } else {
+        structure.to_string()
+    }
+}
+
+/// `+0.600000+0.800000i`.
+fn complex([re, im]: [f64; 2]) -> String {
+    format!("{re:+.6}{im:+.6}i")
+}
 
 /// The sweep of `sweep.param` as asked (`from`, `to`, `count`; `set` says
-/// the other parameters): its transitions, then the motions at each point.
-pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str) -> String {
+/// the other parameters): its transitions, bifurcations, branches, then the
+/// motions at each point. With `unstable` false, the unstable stretches of
+/// the branches and the unstable motions are left out (today's view).
+pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str, unstable: bool) -> String {
     let name = &sweep.param;
     let mut out = format!("sweep of {name} over [{from}, {to}] ({count} points), {set}\n\n");
     out.push_str("transitions:\n");
@@ -13,10 +115,7 @@ pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str) -> Strin
         out.push_str(&format!(
             "  {name} = {:<18.12} {:<16} {} -> {}{}\n",
             t.value,
-            serde_json::to_value(t.kind)
-                .ok()
-                .and_then(|v| v.as_str().map(String::from))
-                .unwrap_or_default(),
+            t.kind.name(),
             t.from,
             t.to,
             t.boundary
@@ -24,19 +123,50 @@ pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str) -> Strin
                 .map_or(String::new(), |b| format!(" (on {b})"))
         ));
     }
+    if !sweep.bifurcations.is_empty() {
+        out.push_str("\nbifurcations:\n");
+        for b in &sweep.bifurcations {
+            let born = if b.born.is_empty() {
+                String::new()
+            } else {
+                let ids: Vec<String> = b.born.iter().map(|i| format!("#{i}")).collect();
+                format!(", born {}", ids.join(" "))
+            };
+            out.push_str(&format!(
+                "  {name} = {:<18.12} {:<16} {}  λ = {}  on branch #{}{born}\n",
+                b.value,
+                b.kind.name(),
+                with_periods(&b.structure, b.n),
+                complex(b.eigenvalue),
+                b.branch,
+            ));
+        }
+    }
+    let shown: Vec<(&BranchSummary, Vec<Run>)> = sweep
+        .branches
+        .iter()
+        .map(|b| {
+            let mut r = runs(b, &sweep.bifurcations);
+            r.retain(|r| unstable || r.stable);
+            (b, r)
+        })
+        .filter(|(_, r)| !r.is_empty())
+        .collect();
+    if !shown.is_empty() {
+        out.push_str("\nbranches:\n");
+        for (b, runs) in &shown {
+            out.push_str(&branch_block(name, b, runs));
+        }
+    }
     out.push_str("\nmotions:\n");
     for p in &sweep.points {
         let names: Vec<String> = p
             .motions
             .iter()
+            .filter(|m| unstable || m.stable)
             .map(|m| {
-                let n = if m.n > 1 {
-                    format!("^{}", m.n)
-                } else {
-                    String::new()
-                };
                 let st = if m.stable { "" } else { " (unstable)" };
-                format!("{}{n}{st}", m.structure)
+                format!("{}{st}", with_periods(&m.structure, m.n))
             })
             .collect();
         out.push_str(&format!(
@@ -48,34 +178,193 @@ pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str) -> Strin
     out
 }
 
-/// The sweep as JSON: `param`, `points` (the parameter's value and the
-/// motions there), `transitions` (the value, `from`, `to`, `kind`,
-/// `boundary`), the value keyed by the parameter's name.
+/// One branch: its number, structure and range, its runs, its ends.
+fn branch_block(name: &str, b: &BranchSummary, runs: &[Run]) -> String {
+    let values = runs
+        .iter()
+        .flat_map(|r| b.points[r.first..=r.last].iter().map(|p| p.value));
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), v| {
+        (a.min(v), c.max(v))
+    });
+    let count: usize = runs.iter().map(|r| r.last + 1 - r.first).sum();
+    let mut out = format!(
+        "  #{} {}: {name} from {lo:.6} to {hi:.6}, {count} points\n",
+        b.id,
+        with_periods(&b.structure, b.n)
+    );
+    let at = |v: f64, kind: Option<&str>| match kind {
+        Some(k) => format!("{v:.6} ({k})"),
+        None => format!("{v:.6}"),
+    };
+    for r in runs {
+        out.push_str(&format!(
+            "      {:<9} {name} = {} -> {}\n",
+            if r.stable { "stable" } else { "unstable" },
+            at(r.from, r.from_kind),
+            at(r.to, r.to_kind)
+        ));
+    }
+    let ends: Vec<String> = b
+        .ends
+        .iter()
+        .map(|e| {
+            let mut s = format!("{} at {name} = {:.6}", e.reason, e.value);
+            if let Some(on) = &e.boundary {
+                s.push_str(&format!(" (on {on})"));
+            }
+            if let Some(d) = &e.detail {
+                s.push_str(&format!(" ({d})"));
+            }
+            s
+        })
+        .collect();
+    out.push_str(&format!(
+        "      ends: {}\n",
+        if ends.is_empty() {
+            "none (a closed loop)".to_string()
+        } else {
+            ends.join("; ")
+        }
+    ));
+    out
+}
+
+/// The keys of the objects that also carry the parameter's value.
+const KEYS: [&str; 16] = [
+    "motions",
+    "from",
+    "to",
+    "kind",
+    "boundary",
+    "start_Wt",
+    "start_x",
+    "eigenvalues",
+    "stable",
+    "reason",
+    "detail",
+    "structure",
+    "N",
+    "eigenvalue",
+    "branch",
+    "born",
+];
+
+fn clash(name: &str) -> serde_json::Error {
+    serde::ser::Error::custom(format!(
+        "the swept parameter `{name}` has the name of a key of the sweep's JSON \
+         (README, \"Bifurcations and maps\"), so its value could not be told apart; \
+         rename the parameter in the model"
+    ))
+}
+
+/// `item` as a JSON object with the parameter's value first, keyed by the
+/// parameter's name. The name must not be one of the item's own keys.
+fn keyed(name: &str, value: f64, item: &impl Serialize) -> Result<Value, serde_json::Error> {
+    let mut o = Map::new();
+    o.insert(name.to_string(), serde_json::json!(value));
+    let Value::Object(fields) = serde_json::to_value(item)? else {
+        return Err(serde::ser::Error::custom(
+            "a sweep item is not a JSON object",
+        ));
+    };
+    for (k, v) in fields {
+        if k == name {
+            return Err(clash(name));
+        }
+        o.insert(k, v);
+    }
+    Ok(Value::Object(o))
+}
+
+#[derive(Serialize)]
+struct PointFields<'a> {
+    motions: &'a [crate::study::sweep::MotionSummary],
+}
+
+#[derive(Serialize)]
+struct TransitionFields<'a> {
+    from: &'a str,
+    to: &'a str,
+    kind: &'static str,
+    boundary: &'a Option<String>,
+}
+
+/// The sweep as JSON, every parameter value keyed by the parameter's name:
+/// `param`; `points` (each grid value and the motions there);
+/// `transitions` (the value, `from`, `to`, `kind`, `boundary`); `branches`
+/// (`id`, `structure`, `N`, `points` in arclength order with `start_Wt`,
+/// `start_x`, `eigenvalues`, `stable`, and `ends` with `reason` and, where
+/// they apply, `boundary` and `detail`); `bifurcations` (the value, `kind`,
+/// `structure`, `N`, `eigenvalue`, `branch`, `born`, `start_Wt`,
+/// `start_x`). A parameter named like one of these keys is an error.
 pub fn json(sweep: &Sweep) -> Result<String, serde_json::Error> {
     let name = &sweep.param;
-    let points: Vec<serde_json::Value> = sweep
+    if KEYS.contains(&name.as_str()) {
+        return Err(clash(name));
+    }
+    let points = sweep
         .points
         .iter()
         .map(|p| {
-            let mut o = serde_json::Map::new();
-            o.insert(name.clone(), serde_json::json!(p.value));
-            o.insert("motions".into(), serde_json::json!(p.motions));
-            serde_json::Value::Object(o)
+            keyed(
+                name,
+                p.value,
+                &PointFields {
+                    motions: &p.motions,
+                },
+            )
         })
-        .collect();
-    let transitions: Vec<serde_json::Value> = sweep
+        .collect::<Result<Vec<_>, _>>()?;
+    let transitions = sweep
         .transitions
         .iter()
         .map(|t| {
-            let mut o = serde_json::Map::new();
-            o.insert(name.clone(), serde_json::json!(t.value));
-            o.insert("from".into(), serde_json::json!(t.from));
-            o.insert("to".into(), serde_json::json!(t.to));
-            o.insert("kind".into(), serde_json::json!(t.kind));
-            o.insert("boundary".into(), serde_json::json!(t.boundary));
-            serde_json::Value::Object(o)
+            keyed(
+                name,
+                t.value,
+                &TransitionFields {
+                    from: &t.from,
+                    to: &t.to,
+                    kind: t.kind.name(),
+                    boundary: &t.boundary,
+                },
+            )
         })
-        .collect();
-    let doc = serde_json::json!({ "param": name, "points": points, "transitions": transitions });
+        .collect::<Result<Vec<_>, _>>()?;
+    let branches = sweep
+        .branches
+        .iter()
+        .map(|b| {
+            let samples = b
+                .points
+                .iter()
+                .map(|q| keyed(name, q.value, q))
+                .collect::<Result<Vec<_>, _>>()?;
+            let ends = b
+                .ends
+                .iter()
+                .map(|e| keyed(name, e.value, e))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(serde_json::json!({
+                "id": b.id,
+                "structure": b.structure,
+                "N": b.n,
+                "points": samples,
+                "ends": ends,
+            }))
+        })
+        .collect::<Result<Vec<_>, serde_json::Error>>()?;
+    let bifurcations = sweep
+        .bifurcations
+        .iter()
+        .map(|f| keyed(name, f.value, f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let doc = serde_json::json!({
+        "param": name,
+        "points": points,
+        "transitions": transitions,
+        "branches": branches,
+        "bifurcations": bifurcations,
+    });
     serde_json::to_string_pretty(&doc)
 }

@@ -1,6 +1,7 @@
-//! Text on a figure, measured in pixels: boxes, wrapping to a width, and
+//! Text on a figure, measured in pixels: boxes, wrapping to a width,
 //! labels along a horizontal axis stacked in rows so that none overlaps
-//! another.
+//! another, and labels placed next to points of a chart clear of what is
+//! already there.
 //!
 //! Widths come from the compiled-in font ([`super::backend::register`]), the
 //! one the PNG backend draws with; an SVG viewer substitutes its own
@@ -154,6 +155,62 @@ pub fn stack(
         .collect()
 }
 
+impl Rect {
+    /// The squared distance from `(x, y)` to the nearest pixel of the box.
+    pub fn distance2(&self, (x, y): (i32, i32)) -> i64 {
+        let dx = i64::from((self.x0 - x).max(x - (self.x1 - 1)).max(0));
+        let dy = i64::from((self.y0 - y).max(y - (self.y1 - 1)).max(0));
+        dx * dx + dy * dy
+    }
+
+    /// Grown by `d` pixels on every side.
+    pub fn grown(&self, d: i32) -> Self {
+        Self {
+            x0: self.x0 - d,
+            y0: self.y0 - d,
+            x1: self.x1 + d,
+            y1: self.y1 + d,
+        }
+    }
+}
+
+/// A box of `(w, h)` pixels for the label of the point `at`: inside
+/// `within`, keeping `gap` pixels from every box of `taken`, as near to the
+/// point as may be (on a grid of a few pixels; of equally near places, to
+/// the right of the point first, then above). `None` when no place is left.
+pub fn place_near(
+    at: (i32, i32),
+    (w, h): (i32, i32),
+    within: Rect,
+    taken: &[Rect],
+    gap: i32,
+) -> Option<Rect> {
+    const STEP: i32 = 3;
+    let free = |r: &Rect| r.inside(&within) && taken.iter().all(|t| !t.grown(gap).overlaps(r));
+    let mut best: Option<((i64, u8), Rect)> = None;
+    let mut y = within.y0;
+    while y + h <= within.y1 {
+        let mut x = within.x0;
+        while x + w <= within.x1 {
+            let r = Rect::at(x, y, (w, h));
+            let side = if r.x0 > at.0 {
+                0
+            } else if r.y1 <= at.1 {
+                1
+            } else {
+                2
+            };
+            let key = (r.distance2(at), side);
+            if best.as_ref().is_none_or(|(k, _)| key < *k) && free(&r) {
+                best = Some((key, r));
+            }
+            x += STEP;
+        }
+        y += STEP;
+    }
+    best.map(|(_, r)| r)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,5 +271,34 @@ mod tests {
         }
         // Alone, a label sits centred on its point, in the first row.
         assert_eq!(stack(&[100], &[20], 0, 400, 3), vec![(90, 0)]);
+    }
+
+    #[test]
+    fn labels_placed_near_points_keep_apart_and_inside() {
+        let within = Rect::at(0, 0, (300, 200));
+        // Forty points crowded on one line, as bifurcations at |λ| = 1.
+        let mut taken: Vec<Rect> = (0..40)
+            .map(|i| Rect::at(100 + i, 100 - 5, (11, 11)))
+            .collect();
+        let markers = taken.len();
+        for i in 0..40 {
+            let at = (105 + i, 100);
+            let r = place_near(at, (30, 16), within, &taken, 2).expect("room left");
+            assert!(r.inside(&within), "{r:?}");
+            for t in &taken {
+                assert!(!t.grown(2).overlaps(&r), "{r:?} meets {t:?}");
+            }
+            taken.push(r);
+        }
+        // The first label sits right by its point; a lone point's label too.
+        let first = taken[markers];
+        assert!(first.distance2((105, 100)) <= 10 * 10, "{first:?}");
+        let lone = place_near((50, 50), (30, 16), within, &[], 2).unwrap();
+        assert!(lone.distance2((50, 50)) <= 2, "{lone:?}");
+        // No room: none.
+        assert_eq!(
+            place_near((5, 5), (30, 16), Rect::at(0, 0, (20, 20)), &[], 2),
+            None
+        );
     }
 }

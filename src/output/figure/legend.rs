@@ -10,14 +10,21 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::backend::{DrawError, FAMILY};
 use super::layout::{line_height, text_width, wrap, Rect};
+use super::symbol::Symbol;
 
 /// What stands before an entry's text.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Mark {
     /// A short line (a curve's colour).
     Line(RGBColor),
+    /// A dashed line (an unstable stretch of a curve).
+    Dashed(RGBColor),
     /// A dot (a series of points).
     Dot(RGBColor),
+    /// A ring (an unstable point of a series).
+    Hollow(RGBColor),
+    /// A marker symbol (a point of note).
+    Symbol(Symbol),
     /// A filled, outlined square (a region's colour).
     Swatch(RGBColor),
     /// A number or short tag (a key to marks in the figure).
@@ -225,9 +232,23 @@ impl Legend {
                         c.stroke_width(3),
                     ))?;
                 }
+                Mark::Dashed(c) => {
+                    let mut x = m.x0;
+                    while x < m.x1 {
+                        area.draw(&PathElement::new(
+                            vec![(x, mid), ((x + 5).min(m.x1), mid)],
+                            c.stroke_width(1),
+                        ))?;
+                        x += 8;
+                    }
+                }
                 Mark::Dot(c) => {
                     area.draw(&Circle::new(((m.x0 + m.x1) / 2, mid), 4, c.filled()))?;
                 }
+                Mark::Hollow(c) => {
+                    area.draw(&Circle::new(((m.x0 + m.x1) / 2, mid), 4, c.stroke_width(1)))?;
+                }
+                Mark::Symbol(s) => s.draw(area, ((m.x0 + m.x1) / 2, mid))?,
                 Mark::Swatch(c) => {
                     area.draw(&Rectangle::new(corners(m), c.filled()))?;
                     area.draw(&Rectangle::new(corners(m), BLACK.stroke_width(1)))?;

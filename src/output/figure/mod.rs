@@ -7,17 +7,20 @@
 //! [`palette`]. One file per figure:
 //!
 //! * [`orbit`] — a motion's time history in six panels (the paper's Figs. 12–16);
-//! * [`sweep`] — a sweep's bifurcation diagram (Figs. 9–10);
+//! * [`sweep`] — a sweep's bifurcation diagram (Figs. 9–10), its branches
+//!   drawn by [`branch`], its bifurcations marked by [`symbol`];
 //! * [`map`] — a parameter map (Fig. 11);
 //! * [`trade`] — error against computing time.
 
 pub mod backend;
+pub mod branch;
 pub mod layout;
 pub mod legend;
 pub mod map;
 pub mod orbit;
 pub mod palette;
 pub mod sweep;
+pub mod symbol;
 pub mod trade;
 
 use plotters::coord::Shift;

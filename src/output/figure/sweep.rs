@@ -3,6 +3,14 @@
 //! parameter, the eigenvalues' moduli and real parts; one colour per
 //! structure, transitions as dashed vertical lines.
 //!
+//! Each branch is a curve through its points in arclength order
+//! ([`super::branch`]): solid where the motion is stable, thin and dashed
+//! where it is unstable; the motions found at the grid points are dots
+//! (rings when unstable). Every bifurcation is marked in each panel by the
+//! symbol of its kind ([`symbol_of`]) and labelled (`F1`, `PD2`, …, numbered
+//! in the order of the parameter) next to its mark, clear of every other
+//! label and mark ([`place_near`]); a key lists each one in full.
+//!
 //! Transitions crowd (several within a pixel where a motion grazes and
 //! sticks in turn), so they are numbered in the order of the parameter: the
 //! numbers stand over the upper panels, stacked in rows so that no two
@@ -16,14 +24,16 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::layout::{line_height, stack, text_width, Rect};
+use super::branch::{curves, Quantity, Stroke};
+use super::layout::{line_height, place_near, stack, text_width, Rect};
 use super::legend::{Entry, Legend, LegendLayout, Mark};
 use super::palette::category;
+use super::symbol::{Symbol, INK, RADIUS};
 use super::{
     pixels, save, DrawError, Figure, AXIS_SIZE, CAPTION_SIZE, FAMILY, LIGHT_GRID, REFERENCE_GREY,
     TICK_SIZE, TITLE_SIZE,
 };
-use crate::study::sweep::{MotionSummary, Sweep, Transition, TransitionKind};
+use crate::study::sweep::{BifurcationSummary, MotionSummary, Sweep, Transition, TransitionKind};
 
 /// Panel titles, in drawing order.
 pub const SWEEP_TITLES: [&str; 4] = [
@@ -44,6 +54,67 @@ const KEY_SIZE: u32 = 12;
 const SAME_PIXEL: i32 = 2;
 /// Room between tags in a row (pixels).
 const TAG_GAP: i32 = 4;
+/// Room kept between a bifurcation's label and other labels and marks.
+const LABEL_GAP: i32 = 2;
+/// Width of a branch's stable stretches (pixels).
+pub const STABLE_WIDTH: u32 = 2;
+/// Width of a branch's unstable, dashed stretches (pixels).
+pub const UNSTABLE_WIDTH: u32 = 1;
+/// Dark grey of the key's sample lines.
+const SAMPLE_GREY: RGBColor = RGBColor(70, 70, 70);
+
+/// The symbol marking a bifurcation of `kind`, and its label's prefix.
+pub fn symbol_of(kind: TransitionKind) -> (Symbol, &'static str) {
+    match kind {
+        TransitionKind::Fold => (Symbol::Square, "F"),
+        TransitionKind::BranchPoint => (Symbol::Diamond, "BP"),
+        TransitionKind::PeriodDoubling => (Symbol::Triangle, "PD"),
+        TransitionKind::NeimarkSacker => (Symbol::Ring, "NS"),
+        TransitionKind::Grazing => (Symbol::Cross, "G"),
+        TransitionKind::StickOnset => (Symbol::Cross, "SO"),
+        TransitionKind::StickVanishing => (Symbol::Cross, "SV"),
+        TransitionKind::PassableOnset => (Symbol::Cross, "PO"),
+    }
+}
+
+/// What each kind of bifurcation is, for the key.
+fn kind_meaning(kind: TransitionKind) -> &'static str {
+    match kind {
+        TransitionKind::Fold => "fold: eigenvalue +1 where the branch turns back",
+        TransitionKind::BranchPoint => "branch point: eigenvalue +1, other branches cross",
+        TransitionKind::PeriodDoubling => "period doubling: eigenvalue −1, twice the period born",
+        TransitionKind::NeimarkSacker => "Neimark–Sacker: a complex pair on |λ| = 1",
+        _ => kind_name(kind),
+    }
+}
+
+/// `P_{...}` with `^N` when `N > 1`.
+fn with_periods(structure: &str, n: u32) -> String {
+    if n > 1 {
+        format!("{structure}^{n}")
+    } else {
+        structure.to_string()
+    }
+}
+
+/// A bifurcation's line in the key.
+fn describe_bifurcation(param: &str, b: &BifurcationSummary) -> String {
+    let born = if b.born.is_empty() {
+        String::new()
+    } else {
+        let ids: Vec<String> = b.born.iter().map(|i| format!("#{i}")).collect();
+        format!(", born {}", ids.join(" "))
+    };
+    format!(
+        "{param} = {:.8}  {} on {} (branch #{}), λ = {:+.4}{:+.4}i{born}",
+        b.value,
+        kind_name(b.kind),
+        with_periods(&b.structure, b.n),
+        b.branch,
+        b.eigenvalue[0],
+        b.eigenvalue[1],
+    )
+}
 
 fn kind_name(k: TransitionKind) -> &'static str {
     match k {
@@ -130,35 +201,69 @@ pub fn tags(lines: &[i32], left: i32, right: i32) -> Vec<Tag> {
         .collect()
 }
 
+/// A bifurcation's label in one panel, as drawn.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Label {
+    /// `F1`, `PD2`, …
+    pub text: String,
+    /// The panel (0–3, in the order of [`SWEEP_TITLES`]).
+    pub panel: usize,
+    /// The box of the bifurcation's mark, pixels of the image.
+    pub mark: Rect,
+    /// The label's box, pixels of the image.
+    pub rect: Rect,
+    /// The panel's plotting area, pixels of the image.
+    pub plot: Rect,
+}
+
 /// The bifurcation diagram of a sweep.
 pub struct SweepFigure<'a> {
     sweep: &'a Sweep,
     title: &'a str,
+    /// Whether unstable stretches and motions are drawn.
+    unstable: bool,
     /// Structures in order of first appearance (their colours' order).
     names: Vec<String>,
     /// Indices of the transitions in the order of the parameter.
     order: Vec<usize>,
-    structures: (Legend, LegendLayout),
-    key: (Legend, LegendLayout),
+    /// Indices of the bifurcations in the order of the parameter.
+    marks: Vec<usize>,
+    /// The legends under the panels, top to bottom (only those with entries).
+    legends: Vec<(Legend, LegendLayout)>,
 }
 
 impl<'a> SweepFigure<'a> {
-    /// The figure of `sweep`, with `title` on top.
+    /// The figure of `sweep`, with `title` on top, unstable parts included.
     pub fn new(sweep: &'a Sweep, title: &'a str) -> Self {
+        Self::showing(sweep, title, true)
+    }
+
+    /// The figure of `sweep`; with `unstable` false, without the branches'
+    /// unstable stretches and the unstable motions at the grid points.
+    pub fn showing(sweep: &'a Sweep, title: &'a str, unstable: bool) -> Self {
         let mut names: Vec<String> = Vec::new();
+        let mut note = |name: &str| {
+            if name != "NM" && !names.iter().any(|n| n == name) {
+                names.push(name.to_string());
+            }
+        };
         for p in &sweep.points {
-            for m in &p.motions {
-                if m.structure != "NM" && !names.contains(&m.structure) {
-                    names.push(m.structure.clone());
-                }
+            for m in p.motions.iter().filter(|m| unstable || m.stable) {
+                note(&m.structure);
             }
         }
-        let mut order: Vec<usize> = (0..sweep.transitions.len()).collect();
-        order.sort_by(|&a, &b| {
-            sweep.transitions[a]
-                .value
-                .total_cmp(&sweep.transitions[b].value)
-        });
+        for b in &sweep.branches {
+            if b.points.iter().any(|q| unstable || q.stable) {
+                note(&b.structure);
+            }
+        }
+        let by_value = |values: Vec<f64>| {
+            let mut order: Vec<usize> = (0..values.len()).collect();
+            order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+            order
+        };
+        let order = by_value(sweep.transitions.iter().map(|t| t.value).collect());
+        let marks = by_value(sweep.bifurcations.iter().map(|b| b.value).collect());
         let width = WIDTH as i32 - 2 * KEY_MARGIN;
         let structures = Legend::new(
             Some("structures".to_string()),
@@ -166,6 +271,65 @@ impl<'a> SweepFigure<'a> {
                 .iter()
                 .enumerate()
                 .map(|(k, n)| Entry::new(Mark::Dot(category(k)), n.clone()))
+                .collect(),
+            KEY_SIZE,
+            false,
+        );
+        let mut lines = Vec::new();
+        let drawn = |stable: bool| {
+            sweep
+                .branches
+                .iter()
+                .any(|b| b.points.iter().any(|q| q.stable == stable))
+        };
+        let dots = |stable: bool| {
+            sweep
+                .points
+                .iter()
+                .any(|p| p.motions.iter().any(|m| m.stable == stable))
+        };
+        if drawn(true) {
+            lines.push(Entry::new(
+                Mark::Line(SAMPLE_GREY),
+                "branch, stable (a dot: a motion at a grid point)",
+            ));
+        }
+        if unstable && drawn(false) {
+            lines.push(Entry::new(Mark::Dashed(SAMPLE_GREY), "branch, unstable"));
+        }
+        if unstable && dots(false) {
+            lines.push(Entry::new(
+                Mark::Hollow(SAMPLE_GREY),
+                "an unstable motion at a grid point",
+            ));
+        }
+        let mut kinds: Vec<TransitionKind> = Vec::new();
+        for b in &sweep.bifurcations {
+            if !kinds.contains(&b.kind) {
+                kinds.push(b.kind);
+            }
+        }
+        kinds.sort_by_key(|&k| symbol_of(k).1);
+        for k in kinds {
+            let (symbol, prefix) = symbol_of(k);
+            lines.push(Entry::new(
+                Mark::Symbol(symbol),
+                format!("{prefix}  {}", kind_meaning(k)),
+            ));
+        }
+        let lines = Legend::new(Some("lines and marks".to_string()), lines, KEY_SIZE, false);
+        let bifurcations = Legend::new(
+            Some("bifurcations (labelled in the panels)".to_string()),
+            marks
+                .iter()
+                .enumerate()
+                .map(|(k, &i)| {
+                    let b = &sweep.bifurcations[i];
+                    Entry::new(
+                        Mark::Tag(format!("{}{}", symbol_of(b.kind).1, k + 1)),
+                        describe_bifurcation(&sweep.param, b),
+                    )
+                })
                 .collect(),
             KEY_SIZE,
             false,
@@ -186,33 +350,49 @@ impl<'a> SweepFigure<'a> {
             KEY_SIZE,
             false,
         );
-        let structures_layout = structures.layout(width);
-        let key_layout = key.layout(width);
+        let legends = [structures, lines, bifurcations, key]
+            .into_iter()
+            .filter(|l| !l.entries.is_empty())
+            .map(|l| {
+                let layout = l.layout(width);
+                (l, layout)
+            })
+            .collect();
         Self {
             sweep,
             title,
+            unstable,
             names,
             order,
-            structures: (structures, structures_layout),
-            key: (key, key_layout),
+            marks,
+            legends,
         }
     }
 
-    /// Where the two legends go under the panels (upper-left corners).
-    fn key_origins(&self) -> [(i32, i32); 2] {
-        let y = PANELS_HEIGHT as i32 + KEY_MARGIN / 2;
-        let below = if self.names.is_empty() {
-            y
-        } else {
-            y + self.structures.1.bounds.y1 + KEY_MARGIN / 2
-        };
-        [(KEY_MARGIN, y), (KEY_MARGIN, below)]
+    /// Where the legends go under the panels (upper-left corners).
+    fn key_origins(&self) -> Vec<(i32, i32)> {
+        let mut y = PANELS_HEIGHT as i32 + KEY_MARGIN / 2;
+        self.legends
+            .iter()
+            .map(|(_, layout)| {
+                let at = (KEY_MARGIN, y);
+                y += layout.bounds.y1 + KEY_MARGIN / 2;
+                at
+            })
+            .collect()
+    }
+
+    /// The label of the `k`-th bifurcation in the order of the parameter.
+    fn label(&self, k: usize) -> String {
+        let b = &self.sweep.bifurcations[self.marks[k]];
+        format!("{}{}", symbol_of(b.kind).1, k + 1)
     }
 }
 
-/// Draw `sweep` into `path` (SVG or PNG by extension).
-pub fn plot_sweep(sweep: &Sweep, title: &str, path: &Path) -> Result<(), String> {
-    save(&SweepFigure::new(sweep, title), path)
+/// Draw `sweep` into `path` (SVG or PNG by extension); with `unstable`
+/// false, without its unstable parts.
+pub fn plot_sweep(sweep: &Sweep, title: &str, path: &Path, unstable: bool) -> Result<(), String> {
+    save(&SweepFigure::showing(sweep, title, unstable), path)
 }
 
 type Getter = fn(&MotionSummary) -> Vec<f64>;
@@ -222,14 +402,28 @@ const GETTERS: [Getter; 4] = [
     |m| m.eigenvalues.iter().map(|e| e[0].hypot(e[1])).collect(),
     |m| m.eigenvalues.iter().map(|e| e[0]).collect(),
 ];
+const QUANTITIES: [Quantity; 4] = [
+    |q| q.points.iter().map(|p| p.phase).collect(),
+    |q| q.points.iter().map(|p| p.x).collect(),
+    |q| q.eigenvalues.iter().map(|e| e[0].hypot(e[1])).collect(),
+    |q| q.eigenvalues.iter().map(|e| e[0]).collect(),
+];
+/// Where a bifurcation stands in each panel: its first switching point's
+/// phase and displacement, its critical eigenvalue's modulus and real part.
+const MARKED: [fn(&BifurcationSummary) -> f64; 4] = [
+    |b| b.start_wt,
+    |b| b.start_x,
+    |b| b.eigenvalue[0].hypot(b.eigenvalue[1]),
+    |b| b.eigenvalue[0],
+];
 
 impl Figure for SweepFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let bottom = if self.order.is_empty() {
-            self.key_origins()[0].1 + self.structures.1.bounds.y1
-        } else {
-            self.key_origins()[1].1 + self.key.1.bounds.y1
-        };
+        let bottom = self
+            .key_origins()
+            .last()
+            .zip(self.legends.last())
+            .map_or(PANELS_HEIGHT as i32, |(o, (_, l))| o.1 + l.bounds.y1);
         (
             WIDTH,
             (bottom + KEY_MARGIN).max(PANELS_HEIGHT as i32) as u32,
@@ -241,34 +435,75 @@ impl Figure for SweepFigure<'_> {
     }
 }
 
+/// The smallest and largest of `values`, ignoring non-finite ones.
+fn extent(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        })
+}
+
 impl SweepFigure<'_> {
     /// The tags over the upper panels as drawn, in pixels of the image
     /// (one list per panel), and the boxes of the key's texts and marks.
     pub fn placed(&self) -> Result<(Vec<Vec<Tag>>, Vec<Rect>), DrawError> {
-        let mut svg = String::new();
-        let tags = {
-            let root = SVGBackend::with_string(&mut svg, self.size()).into_drawing_area();
-            self.draw_all(&root)?
-        };
-        let [s, k] = self.key_origins();
-        let structures = self.structures.1.boxes().map(|r| r.shifted(s.0, s.1));
-        let key = self.key.1.boxes().map(|r| r.shifted(k.0, k.1));
-        Ok((tags, structures.chain(key).collect()))
+        let (tags, _) = self.draw_to_string()?;
+        let key = self
+            .legends
+            .iter()
+            .zip(self.key_origins())
+            .flat_map(|((_, layout), o)| layout.boxes().map(move |r| r.shifted(o.0, o.1)))
+            .collect();
+        Ok((tags, key))
     }
 
-    /// Draw the figure; the tags over the upper panels, in pixels of `root`.
+    /// The bifurcations' labels as drawn, panel by panel, each in the order
+    /// of the parameter.
+    pub fn labels(&self) -> Result<Vec<Label>, DrawError> {
+        Ok(self.draw_to_string()?.1)
+    }
+
+    fn draw_to_string(&self) -> Result<(Vec<Vec<Tag>>, Vec<Label>), DrawError> {
+        let mut svg = String::new();
+        let root = SVGBackend::with_string(&mut svg, self.size()).into_drawing_area();
+        self.draw_all(&root)
+    }
+
+    /// Draw the figure; the tags over the upper panels and the
+    /// bifurcations' labels, in pixels of `root`.
     fn draw_all<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
-    ) -> Result<Vec<Vec<Tag>>, DrawError> {
+    ) -> Result<(Vec<Vec<Tag>>, Vec<Label>), DrawError> {
         let sweep = self.sweep;
+        let shown = |stable: bool| self.unstable || stable;
         let mut placed = Vec::new();
+        let mut labels = Vec::new();
         root.fill(&WHITE)?;
         let (panels, _) = root.split_vertically(PANELS_HEIGHT);
         let body = panels.titled(self.title, (FAMILY, TITLE_SIZE).into_font())?;
         let areas = body.split_evenly((2, 2));
-        let lo = sweep.points.first().map_or(0.0, |p| p.value);
-        let hi = sweep.points.last().map_or(1.0, |p| p.value);
+        let (lo, hi) = extent(
+            sweep
+                .points
+                .iter()
+                .map(|p| p.value)
+                .chain(
+                    sweep
+                        .branches
+                        .iter()
+                        .flat_map(|b| b.points.iter().map(|q| q.value)),
+                )
+                .chain(sweep.bifurcations.iter().map(|b| b.value)),
+        );
+        let (lo, hi) = if lo < hi {
+            (lo, hi)
+        } else if lo.is_finite() {
+            (lo - 0.5, lo + 0.5)
+        } else {
+            (0.0, 1.0)
+        };
         let values: Vec<f64> = self
             .order
             .iter()
@@ -276,17 +511,31 @@ impl SweepFigure<'_> {
             .collect();
         for (panel, area) in areas.iter().enumerate() {
             let get = GETTERS[panel];
-            let mut ys: Vec<f64> = Vec::new();
-            for p in &sweep.points {
-                for m in &p.motions {
-                    ys.extend(get(m).into_iter().filter(|v| v.is_finite()));
-                }
-            }
-            let (mut y0, mut y1) = ys
+            let quantity = QUANTITIES[panel];
+            let period = (panel == 0).then_some(std::f64::consts::TAU);
+            let branch_curves: Vec<(usize, Vec<_>)> = sweep
+                .branches
                 .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-                    (a.min(v), b.max(v))
-                });
+                .map(|b| {
+                    let colour = self.names.iter().position(|n| *n == b.structure);
+                    (
+                        colour.unwrap_or(0),
+                        curves(b, quantity, period, self.unstable),
+                    )
+                })
+                .collect();
+            let (mut y0, mut y1) =
+                extent(
+                    sweep
+                        .points
+                        .iter()
+                        .flat_map(|p| p.motions.iter().filter(|m| shown(m.stable)))
+                        .flat_map(get)
+                        .chain(branch_curves.iter().flat_map(|(_, cs)| {
+                            cs.iter().flat_map(|c| c.points.iter().map(|p| p.1))
+                        }))
+                        .chain(sweep.bifurcations.iter().map(MARKED[panel])),
+                );
             if panel == 0 {
                 (y0, y1) = (0.0, std::f64::consts::TAU);
             }
@@ -345,25 +594,96 @@ impl SweepFigure<'_> {
                     REFERENCE_GREY.stroke_width(1),
                 ))?;
             }
+            for (k, cs) in &branch_curves {
+                let c = category(*k);
+                for curve in cs {
+                    match curve.stroke {
+                        Stroke::Solid => {
+                            chart.draw_series(LineSeries::new(
+                                curve.points.iter().copied(),
+                                c.stroke_width(STABLE_WIDTH),
+                            ))?;
+                        }
+                        Stroke::Dashed => {
+                            chart.draw_series(DashedLineSeries::new(
+                                curve.points.iter().copied(),
+                                6,
+                                4,
+                                c.stroke_width(UNSTABLE_WIDTH),
+                            ))?;
+                        }
+                    }
+                }
+            }
             for (k, name) in self.names.iter().enumerate() {
                 let c = category(k);
-                let pts: Vec<(f64, f64)> = sweep
-                    .points
-                    .iter()
-                    .flat_map(|p| {
-                        p.motions
-                            .iter()
-                            .filter(|m| &m.structure == name)
-                            .flat_map(move |m| get(m).into_iter().map(move |y| (p.value, y)))
-                    })
-                    .filter(|(_, y)| y.is_finite())
-                    .collect();
-                chart.draw_series(
-                    pts.into_iter()
-                        .map(|(x, y)| Circle::new((x, y), 2, c.filled())),
-                )?;
+                for p in &sweep.points {
+                    for m in p.motions.iter().filter(|m| &m.structure == name) {
+                        if !shown(m.stable) {
+                            continue;
+                        }
+                        let style = if m.stable {
+                            c.filled()
+                        } else {
+                            c.stroke_width(1)
+                        };
+                        chart.draw_series(
+                            get(m)
+                                .into_iter()
+                                .filter(|y| y.is_finite())
+                                .map(|y| Circle::new((p.value, y), 2, style)),
+                        )?;
+                    }
+                }
             }
-            let top = pixels(chart.plotting_area()).y0;
+            let plot = pixels(chart.plotting_area());
+            let top = plot.y0;
+            // The bifurcations: marks first, then each label next to its
+            // mark, clear of every mark and label of the panel.
+            let centres: Vec<(i32, i32)> = self
+                .marks
+                .iter()
+                .map(|&i| {
+                    let b = &sweep.bifurcations[i];
+                    chart.backend_coord(&(b.value, MARKED[panel](b)))
+                })
+                .collect();
+            let mut taken: Vec<Rect> = centres.iter().map(|&c| Symbol::rect(c)).collect();
+            for (&i, &c) in self.marks.iter().zip(&centres) {
+                symbol_of(sweep.bifurcations[i].kind).0.draw(root, c)?;
+            }
+            let h = line_height(KEY_SIZE);
+            for (k, &c) in centres.iter().enumerate() {
+                let text = self.label(k);
+                let size = (text_width(&text, KEY_SIZE) + 4, h);
+                let Some(r) = place_near(c, size, plot.grown(-2), &taken, LABEL_GAP) else {
+                    continue;
+                };
+                if r.distance2(c) > i64::from((RADIUS + 2 * LABEL_GAP + 2).pow(2)) {
+                    let to = (c.0.clamp(r.x0, r.x1 - 1), c.1.clamp(r.y0, r.y1 - 1));
+                    root.draw(&PathElement::new(vec![c, to], INK.mix(0.6).stroke_width(1)))?;
+                }
+                root.draw(&Rectangle::new(
+                    [(r.x0, r.y0), (r.x1, r.y1)],
+                    WHITE.mix(0.8).filled(),
+                ))?;
+                root.draw(&Text::new(
+                    text.clone(),
+                    ((r.x0 + r.x1) / 2, (r.y0 + r.y1) / 2),
+                    (FAMILY, KEY_SIZE)
+                        .into_font()
+                        .color(&INK)
+                        .pos(Pos::new(HPos::Center, VPos::Center)),
+                ))?;
+                taken.push(r);
+                labels.push(Label {
+                    text,
+                    panel,
+                    mark: Symbol::rect(c),
+                    rect: r,
+                    plot,
+                });
+            }
             // Leaders first: a tag's box, drawn over them, hides where one
             // passes behind a lower tag.
             for t in &tags {
@@ -399,13 +719,9 @@ impl SweepFigure<'_> {
                 );
             }
         }
-        let [s, k] = self.key_origins();
-        if !self.names.is_empty() {
-            self.structures.0.draw(&self.structures.1, root, s)?;
+        for ((legend, layout), origin) in self.legends.iter().zip(self.key_origins()) {
+            legend.draw(layout, root, origin)?;
         }
-        if !self.order.is_empty() {
-            self.key.0.draw(&self.key.1, root, k)?;
-        }
-        Ok(placed)
+        Ok((placed, labels))
     }
 }
