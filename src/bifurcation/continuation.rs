@@ -206,6 +206,21 @@ impl<M: Model> Continuer<'_, M> {
     /// (predictor `from + s t`, hyperplane normal to `t` through it), with
     /// its tangent; `None` if the corrector fails.
     fn point_at(&mut self, from: &Sample, s: f64) -> Result<(State, Vector, usize), String> {
+        let (x, it) = self.corrected(from, s, self.opts.newton.max_iterations)?;
+        let mut t = from.tangent.clone();
+        self.sys
+            .tangent(&x, &from.tangent, &mut t)
+            .map_err(|e| e.describe())?;
+        Ok((x, t, it))
+    }
+
+    /// The corrected point at arclength `s` from `from` (no tangent).
+    fn corrected(
+        &mut self,
+        from: &Sample,
+        s: f64,
+        max_iterations: usize,
+    ) -> Result<(State, usize), String> {
         let mut x = from.state.clone();
         Bordered::<M>::advance(&from.state, s, &from.tangent, &mut x);
         let anchor = x.clone();
@@ -214,16 +229,12 @@ impl<M: Model> Continuer<'_, M> {
             &from.tangent,
             &anchor,
             self.opts.newton.tolerance,
-            self.opts.newton.max_iterations,
+            max_iterations,
         ) {
             Correction::Converged { iterations } => iterations,
             Correction::Failed(why) => return Err(why),
         };
-        let mut t = from.tangent.clone();
-        self.sys
-            .tangent(&x, &from.tangent, &mut t)
-            .map_err(|e| e.describe())?;
-        Ok((x, t, it))
+        Ok((x, it))
     }
 
     /// Regula falsi (Illinois) in arclength on `g` over `[0, s_bad]` from
@@ -262,9 +273,12 @@ impl<M: Model> Continuer<'_, M> {
                 s = 0.5 * (lo + hi);
                 side = 0;
             }
+            // No tangent at the trials: near a branch point it is ill-posed,
+            // and the located quantities do not need it (the trial keeps
+            // the step's tangent; a fold is classified by the step's ends).
             let sample = self
-                .point_at(from, s)
-                .and_then(|(x, t, _)| self.examine(x, t))
+                .corrected(from, s, 4 * self.opts.newton.max_iterations)
+                .and_then(|(x, _)| self.examine(x, from.tangent.clone()))
                 .ok();
             match sample {
                 Some(smp) => {
@@ -421,7 +435,7 @@ impl<M: Model> Continuer<'_, M> {
                 }
                 let smp = self.examine(x, t)?;
                 let jump = detect::eigenvalue_jump(&prev.point.stability, &smp.point.stability);
-                if jump > 0.25 {
+                if jump > 0.25 && ds > 16.0 * opts.min_step {
                     return Err(format!("an eigenvalue of DP jumps by {jump:.3e} over the step"));
                 }
                 Ok((smp, it))

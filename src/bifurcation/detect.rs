@@ -99,9 +99,13 @@ pub(crate) fn crossings(a: &Tests, b: &Tests) -> Vec<(TransitionKind, Psi)> {
 }
 
 /// How far the eigenvalues move between two points (the larger of the two
-/// moves, eigenvalues matched the closer way).
+/// moves, eigenvalues matched the closer way), relative to their modulus
+/// when it exceeds 1: only moves near the unit circle can hide a crossing.
 pub(crate) fn eigenvalue_jump(a: &Stability, b: &Stability) -> f64 {
-    let d = |x: [f64; 2], y: [f64; 2]| (x[0] - y[0]).hypot(x[1] - y[1]);
+    let d = |x: [f64; 2], y: [f64; 2]| {
+        let scale = x[0].hypot(x[1]).min(y[0].hypot(y[1])).max(1.0);
+        (x[0] - y[0]).hypot(x[1] - y[1]) / scale
+    };
     let [a0, a1] = a.eigenvalues;
     let [b0, b1] = b.eigenvalues;
     let straight = d(a0, b0).max(d(a1, b1));

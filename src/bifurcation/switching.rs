@@ -75,11 +75,13 @@ pub fn born<M: Model>(
         secant.dl = 1.0;
     }
     sys.normalize(&mut secant);
-    let mut tangent = secant.clone();
-    if sys.tangent(&x, &secant, &mut tangent).is_err() {
-        tangent = secant;
-    }
-    // The blocks A_k at the point (left by the tangent's solve).
+    // The blocks A_k at the point, left in the workspace by a tangent solve
+    // (stored before its 3×3 solve, which at a branch point is singular:
+    // its solution is not the old branch's tangent, so the secant through
+    // the neighbours serves as that).
+    let mut scratch = secant.clone();
+    let _ = sys.tangent(&x, &secant, &mut scratch);
+    let tangent = secant;
     let blocks: Vec<Matrix2<f64>> = sys.blocks().to_vec();
     let dp = blocks.iter().fold(Matrix2::identity(), |acc, a| a * acc);
     // The real eigenvalue of DP nearest mu.
