@@ -129,7 +129,13 @@ pub struct Bordered<M: Model> {
 impl<M: Model> Bordered<M> {
     /// The system of `structure` for parameter `index` of `base`, with length
     /// scale `length` and parameter span `span` (allocates its workspace).
-    pub fn new(structure: Structure, base: M::Params, index: usize, length: f64, span: f64) -> Self {
+    pub fn new(
+        structure: Structure,
+        base: M::Params,
+        index: usize,
+        length: f64,
+        span: f64,
+    ) -> Self {
         let m = structure.len();
         Self {
             shift: std::f64::consts::TAU * structure.periods() as f64,
@@ -285,7 +291,12 @@ impl<M: Model> Bordered<M> {
                 Vector2::zeros()
             };
             let hk = -(inv * fl);
-            if !(ak.iter().chain(gk.iter()).chain(hk.iter()).all(|v| v.is_finite())) {
+            if !(ak
+                .iter()
+                .chain(gk.iter())
+                .chain(hk.iter())
+                .all(|v| v.is_finite()))
+            {
                 return Err(Singular::Arrival(k));
             }
             for v in ev.residual.iter() {
@@ -389,7 +400,8 @@ impl<M: Model> Bordered<M> {
             }
             let mut size = (self.delta.dl / self.span).abs();
             for (q, d) in x.points.iter_mut().zip(&self.delta.du) {
-                let v = (d[1].abs() / (ulps * q.phase.abs()).max(1.0)).max(d[0].abs() / self.length);
+                let v =
+                    (d[1].abs() / (ulps * q.phase.abs()).max(1.0)).max(d[0].abs() / self.length);
                 size = size.max(v);
                 q.x += d[0];
                 q.phase += d[1];

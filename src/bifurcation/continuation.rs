@@ -491,7 +491,9 @@ impl<M: Model> Continuer<'_, M> {
                 let (kind, boundary) = good
                     .worst
                     .or(cand.worst)
-                    .map_or((TransitionKind::Grazing, None), |(k, b)| (transition_kind(k), b));
+                    .map_or((TransitionKind::Grazing, None), |(k, b)| {
+                        (transition_kind(k), b)
+                    });
                 s_c = self.sys.dot_diff(&prev.tangent, &good.state, &prev.state);
                 cand = good;
                 reason = Some(EndReason::Transition { kind, boundary });
@@ -520,14 +522,16 @@ impl<M: Model> Continuer<'_, M> {
                     end: end(reason, &cand),
                 };
             }
-            if loop_check && points.len() > 3 && travelled > 4.0 * opts.initial_step {
-                if self.passes_start(&start, &prev, &cand) {
-                    return Run {
-                        points,
-                        bifurcations: bifs,
-                        end: end(EndReason::ClosedLoop, &cand),
-                    };
-                }
+            if loop_check
+                && points.len() > 3
+                && travelled > 4.0 * opts.initial_step
+                && self.passes_start(&start, &prev, &cand)
+            {
+                return Run {
+                    points,
+                    bifurcations: bifs,
+                    end: end(EndReason::ClosedLoop, &cand),
+                };
             }
             if iterations <= 3 {
                 ds = (1.5 * ds).min(opts.max_step);
@@ -541,7 +545,11 @@ impl<M: Model> Continuer<'_, M> {
 
 fn to_vector(d: &Direction) -> Vector {
     Vector {
-        du: d.points.iter().map(|q| Vector2::new(q.x, q.phase)).collect(),
+        du: d
+            .points
+            .iter()
+            .map(|q| Vector2::new(q.x, q.phase))
+            .collect(),
         dl: d.value,
     }
 }
@@ -591,7 +599,9 @@ pub fn follow<M: Model>(
             "the bounds ({lo}, {hi}) must be finite with lo < hi"
         )));
     }
-    if !(opts.min_step > 0.0 && opts.min_step <= opts.initial_step && opts.initial_step <= opts.max_step)
+    if !(opts.min_step > 0.0
+        && opts.min_step <= opts.initial_step
+        && opts.initial_step <= opts.max_step)
     {
         return Err(ContinuationError::Options(format!(
             "need 0 < min_step <= initial_step <= max_step (got {}, {}, {})",
@@ -616,12 +626,21 @@ pub fn follow<M: Model>(
         .iter()
         .all(|q| q.x.is_finite() && q.phase.is_finite())
     {
-        return Err(ContinuationError::Start("a switching point is not finite".into()));
+        return Err(ContinuationError::Start(
+            "a switching point is not finite".into(),
+        ));
     }
     let mut p = *base;
     p.set(index, start.value);
     p.check()?;
-    let mut sys = system::<M>(base, index, &start.structure, start.value, &start.points, opts);
+    let mut sys = system::<M>(
+        base,
+        index,
+        &start.structure,
+        start.value,
+        &start.points,
+        opts,
+    );
     let mut x = State {
         points: start.points.clone(),
         value: start.value,
@@ -662,11 +681,13 @@ pub fn follow<M: Model>(
             if !(t.dl.is_finite() && t.du.iter().all(|v| v.iter().all(|c| c.is_finite())))
                 || sys.dot(&t, &t) == 0.0
             {
-                return Err(ContinuationError::Start("the direction is zero or not finite".into()));
+                return Err(ContinuationError::Start(
+                    "the direction is zero or not finite".into(),
+                ));
             }
             let r = sys.residual(&x);
             let floor = 1e-9 * sys.length * M::oscillator(&p).frequency.abs().max(1.0);
-            if !(r <= floor) {
+            if r.is_nan() || r > floor {
                 return Err(ContinuationError::NotConverged(format!(
                     "residual {r:.3e} at a start given with a direction"
                 )));

@@ -101,10 +101,7 @@ pub fn born<M: Model>(
     }
     match bif.kind {
         TransitionKind::BranchPoint => {
-            let mut d = Vector {
-                du: phi,
-                dl: 0.0,
-            };
+            let mut d = Vector { du: phi, dl: 0.0 };
             let along = sys.dot(&d, &tangent);
             for (x, t) in d.du.iter_mut().zip(&tangent.du) {
                 *x -= along * t;
