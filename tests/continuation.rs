@@ -240,6 +240,22 @@ fn period_doubling_of_p_3_33_4_33_and_its_doubled_branch() {
     let o = opts((10.7, 10.95));
     let b = branch_from_rest::<Paper>(&base, index, 10.7, &o);
     assert_eq!(b.structure.notation(Paper::INFO), "P_{3_33 4_33}");
+    // Cost per point (predictor, corrector, tangent, DP, every margin;
+    // the located points included).
+    let start = Start {
+        structure: b.structure.clone(),
+        value: b.points[0].value,
+        points: b.points[0].points.clone(),
+        direction: None,
+    };
+    let t = std::time::Instant::now();
+    let again = follow::<Paper>(&base, index, &start, &o).expect("the branch");
+    eprintln!(
+        "{} points in {:?}: {:.1} µs per point",
+        again.points.len(),
+        t.elapsed(),
+        t.elapsed().as_secs_f64() * 1e6 / again.points.len() as f64
+    );
     assert_eq!(b.ends.len(), 2);
     assert!(b.ends.iter().all(|e| e.reason == EndReason::ParameterBound));
     assert_eq!((b.ends[0].at.value, b.ends[1].at.value), (10.7, 10.95));
