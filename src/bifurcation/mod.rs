@@ -7,6 +7,18 @@
 
 use serde::Serialize;
 
+pub mod bordered;
+pub mod branch;
+pub mod continuation;
+mod detect;
+pub mod switching;
+
+pub use branch::{Bifurcation, Branch, BranchEnd, BranchPoint, EndReason};
+pub use continuation::{
+    follow, transition_kind, ContinuationError, ContinuationOptions, Direction, Start,
+};
+pub use switching::born;
+
 /// What happens to a motion at a point of a branch: a non-smooth transition
 /// (an admissibility condition of SPEC §6 starts to fail) or an eigenvalue
 /// bifurcation (an eigenvalue of `DP` reaches the unit circle).

@@ -105,6 +105,22 @@ impl Structure {
         self.periods
     }
 
+    /// The structure applied `k` times in a row: `k·N` forcing periods
+    /// (a motion of `structure` is also one of `structure.repeated(k)`).
+    pub fn repeated(&self, k: u32) -> Self {
+        let k = k.max(1);
+        Self {
+            steps: self
+                .steps
+                .iter()
+                .copied()
+                .cycle()
+                .take(self.steps.len() * k as usize)
+                .collect(),
+            periods: self.periods * k,
+        }
+    }
+
     /// Whether any mapping is the stick mapping.
     pub fn has_stick(&self, info: &ModelInfo) -> bool {
         self.steps

@@ -1,0 +1,132 @@
+//! Test functions of the eigenvalue bifurcations along a branch, and which
+//! bifurcation a sign change between two points means.
+//!
+//! * `ψ_fold = t_λ`, the parameter component of the unit tangent;
+//! * `ψ_+1 = det(I − DP)`: zero iff `DP` has the eigenvalue `+1`;
+//! * `ψ_−1 = det(I + DP)`: zero iff `DP` has the eigenvalue `−1`;
+//! * `ψ_NS = det DP − 1`: zero on a complex pair on the unit circle (when
+//!   the eigenvalues are complex at both ends of the step).
+//!
+//! `ψ_+1` changing sign is a fold when `t_λ` changes sign with it (the
+//! branch turns back), else a branch point (the branch goes on through it
+//! and another branch crosses). Of the two usual criteria for a branch
+//! point — the sign of `ψ_+1` without a turn, or the sign of the bordered
+//! system's determinant — the first is used: both `ψ_+1` and `t_λ` are
+//! already computed at every point, exactly (`DP` from the generated
+//! blocks), while the bordered determinant would depend on the scaling of
+//! the unknowns and on the finite-difference `∂F/∂λ`. It can misclassify
+//! only if a fold and a branch point fall within one step, which the step
+//! control (eigenvalue moves of at most 0.25 per step) makes unlikely.
+
+use nalgebra::Matrix2;
+
+use crate::bifurcation::TransitionKind;
+use crate::orbit::stability::Stability;
+
+/// Test-function values at one point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Tests {
+    pub t_lambda: f64,
+    pub plus: f64,
+    pub minus: f64,
+    pub ns: f64,
+    pub complex: bool,
+}
+
+/// Which test function locates a bifurcation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Psi {
+    Plus,
+    Minus,
+    Ns,
+}
+
+/// Below this a test function counts as zero at the start of a step: the
+/// start is itself the bifurcation (a branch born there), not a crossing.
+const AT_ZERO: f64 = 1e-9;
+
+impl Tests {
+    pub fn of(dp: &Matrix2<f64>, t_lambda: f64) -> Self {
+        let (tr, det) = (dp.trace(), dp.determinant());
+        Self {
+            t_lambda,
+            plus: 1.0 - tr + det,
+            minus: 1.0 + tr + det,
+            ns: det - 1.0,
+            complex: tr * tr < 4.0 * det,
+        }
+    }
+
+    pub fn value(&self, which: Psi) -> f64 {
+        match which {
+            Psi::Plus => self.plus,
+            Psi::Minus => self.minus,
+            Psi::Ns => self.ns,
+        }
+    }
+}
+
+impl Psi {
+    /// The sign of this test function at `a` (so that `sign · ψ > 0` on `a`'s side).
+    pub fn sign_from(self, a: &Tests) -> f64 {
+        a.value(self).signum()
+    }
+}
+
+fn changes(a: f64, b: f64) -> bool {
+    a.abs() > AT_ZERO && (a > 0.0) != (b > 0.0) && !b.is_nan()
+}
+
+/// The bifurcations between two consecutive points of a branch.
+pub(crate) fn crossings(a: &Tests, b: &Tests) -> Vec<(TransitionKind, Psi)> {
+    let mut out = Vec::new();
+    if changes(a.plus, b.plus) {
+        let turned = (a.t_lambda > 0.0) != (b.t_lambda > 0.0);
+        let kind = if turned {
+            TransitionKind::Fold
+        } else {
+            TransitionKind::BranchPoint
+        };
+        out.push((kind, Psi::Plus));
+    }
+    if changes(a.minus, b.minus) {
+        out.push((TransitionKind::PeriodDoubling, Psi::Minus));
+    }
+    if a.complex && b.complex && changes(a.ns, b.ns) {
+        out.push((TransitionKind::NeimarkSacker, Psi::Ns));
+    }
+    out
+}
+
+/// How far the eigenvalues move between two points (the larger of the two
+/// moves, eigenvalues matched the closer way), relative to their modulus
+/// when it exceeds 1: only moves near the unit circle can hide a crossing.
+pub(crate) fn eigenvalue_jump(a: &Stability, b: &Stability) -> f64 {
+    let d = |x: [f64; 2], y: [f64; 2]| {
+        let scale = x[0].hypot(x[1]).min(y[0].hypot(y[1])).max(1.0);
+        (x[0] - y[0]).hypot(x[1] - y[1]) / scale
+    };
+    let [a0, a1] = a.eigenvalues;
+    let [b0, b1] = b.eigenvalues;
+    let straight = d(a0, b0).max(d(a1, b1));
+    let crossed = d(a0, b1).max(d(a1, b0));
+    straight.min(crossed)
+}
+
+/// The critical eigenvalue of a bifurcation of kind `kind` (`im >= 0`).
+pub(crate) fn critical(kind: TransitionKind, s: &Stability) -> [f64; 2] {
+    let target = match kind {
+        TransitionKind::PeriodDoubling => -1.0,
+        _ => 1.0,
+    };
+    let score = |e: &[f64; 2]| match kind {
+        TransitionKind::NeimarkSacker => (e[0].hypot(e[1]) - 1.0).abs() - e[1].max(0.0) * 1e-12,
+        _ => (e[0] - target).hypot(e[1]),
+    };
+    let e = if score(&s.eigenvalues[0]) <= score(&s.eigenvalues[1]) {
+        s.eigenvalues[0]
+    } else {
+        s.eigenvalues[1]
+    };
+    [e[0], e[1].abs()]
+}
