@@ -3,8 +3,6 @@
 //! stable period-1 motions, and a stable period-2 motion that a simulation
 //! from rest lands on.
 
-use std::time::Instant;
-
 use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
@@ -13,7 +11,7 @@ use stickslip::orbit::known::{settle, stroboscopic_states, KnownMotions, Settled
 use stickslip::orbit::motion::{solve, Motion};
 use stickslip::orbit::periodic::NewtonOptions;
 use stickslip::orbit::structure::Structure;
-use stickslip::study::search::{coexisting, same_motion, search, SearchOptions};
+use stickslip::study::search::{coexisting, same_motion, search, starts, SearchOptions};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const W_BISTABLE: f64 = 3.9482584517;
@@ -77,7 +75,10 @@ fn stroboscopic_states_agree_with_simulation() {
         let seg = sim.run(start, phi, |_| {}).expect("simulates");
         let (x, v) = sim.state_at(&seg, phi);
         assert_eq!(seg.location, s.location, "state {i}");
-        assert!((x - s.x).abs() < 1e-9 && (v - s.v).abs() < 1e-9, "state {i}: ({x}, {v}) vs {s:?}");
+        assert!(
+            (x - s.x).abs() < 1e-9 && (v - s.v).abs() < 1e-9,
+            "state {i}: ({x}, {v}) vs {s:?}"
+        );
     }
     // The two states of a period-2 motion differ.
     assert!((states[0].x - states[1].x).abs() > 1e-5);
@@ -108,8 +109,14 @@ fn finds_the_period_two_motion_beside_the_two_known_period_one_motions() {
     let x0 = first_segment(&sim, m);
     let (x1, v1) = after(&sim, m, 1);
     let (x2, v2) = after(&sim, m, 2);
-    assert!((x2 - x0.x).abs() < 1e-8 && (v2 - x0.v).abs() < 1e-8, "({x2}, {v2}) vs {x0:?}");
-    assert!((x1 - x0.x).abs().max((v1 - x0.v).abs()) > 1e-4, "({x1}, {v1}) vs {x0:?}");
+    assert!(
+        (x2 - x0.x).abs() < 1e-8 && (v2 - x0.v).abs() < 1e-8,
+        "({x2}, {v2}) vs {x0:?}"
+    );
+    assert!(
+        (x1 - x0.x).abs().max((v1 - x0.v).abs()) > 1e-4,
+        "({x1}, {v1}) vs {x0:?}"
+    );
     // Eigenvalues of DP, by nalgebra, inside the unit circle.
     let dp = m.dp.expect("DP");
     for e in dp.complex_eigenvalues().iter() {
@@ -127,31 +134,73 @@ fn finds_the_period_two_motion_beside_the_two_known_period_one_motions() {
     assert_eq!(coexisting(&sim, &known, &opts).len(), 1);
 }
 
+/// The stable motions at the bistable point.
+fn bistable_three(sim: &Simulator<Paper>) -> Vec<(usize, Motion)> {
+    vec![
+        (0, motion(sim, STICKY, 1)),
+        (1, motion(sim, PASSING, 1)),
+        (2, motion(sim, DOUBLED, 2)),
+    ]
+}
+
 #[test]
 fn with_everything_known_nothing_is_new_and_starts_stop_early() {
-    let sim = sim_at(W_BISTABLE);
-    let all = vec![
-        (0, motion(&sim, STICKY, 1)),
-        (1, motion(&sim, PASSING, 1)),
-        (2, motion(&sim, DOUBLED, 2)),
+    // At W = 3.7 one stable motion, isolated: starts stop at least 3 times
+    // sooner than plain settling. At the bistable point three motions lie
+    // within 3e-4 of their size of one another, so their neighbourhoods are
+    // small and starts stop only 1.5 times sooner (but skip Newton and the
+    // checks).
+    let at_37 = sim_at(3.7);
+    let rest = attractor::find(
+        &at_37,
+        at_37.start(0.0, 0.0, 0.0).expect("rest"),
+        AttractorOptions::default(),
+    );
+    let Ok(Attractor::Periodic(only)) = rest else {
+        panic!("W = 3.7 from rest: {rest:?}");
+    };
+    let bistable = sim_at(W_BISTABLE);
+    let cases = [
+        (at_37, vec![(0, only)], 3.0),
+        (bistable.clone(), bistable_three(&bistable), 1.5),
     ];
     let opts = SearchOptions::default();
-    let known = search(&sim, &all, &opts);
-    let none = search(&sim, &[], &opts);
-    eprintln!("all known: {:?}\nnone known: {:?}", known.stats, none.stats);
-    assert!(known.motions.is_empty(), "{:#?}", known.motions);
-    assert!(known.stats.stopped_known * 4 >= 3 * opts.starts, "{:?}", known.stats);
-    assert!(
-        known.stats.periods * 3 < none.stats.periods,
-        "{:?} vs {:?}",
-        known.stats,
-        none.stats
-    );
-    // With nothing known the search finds the period-2 motion itself.
-    assert!(none
-        .motions
-        .iter()
-        .any(|m| same_motion(m, &all[2].1, 1e-6)));
+    for (sim, all, ratio) in cases {
+        let known = search(&sim, &all, &opts);
+        let none = search(&sim, &[], &opts);
+        // The same starts settled one by one with nothing known (no stop, no
+        // learning): the periods `attractor::find` needs.
+        let (plain, _) = plain_settling(&sim, &all, &opts);
+        let w = sim.oscillator().frequency;
+        eprintln!(
+            "W = {w}: all known {:?}\n  none known {:?}\n  plain settling {plain} periods",
+            known.stats, none.stats
+        );
+        assert!(known.motions.is_empty(), "{:#?}", known.motions);
+        assert!(
+            known.stats.stopped_known * 4 >= 3 * opts.starts,
+            "{:?}",
+            known.stats
+        );
+        assert!(
+            known.stats.periods as f64 * ratio < plain as f64,
+            "W = {w}: {:?} vs {plain}",
+            known.stats
+        );
+        // With nothing known the search finds a stable motion from rest and
+        // the other starts stop on it: the last one known here among them.
+        let last = &all[all.len() - 1].1;
+        assert!(
+            none.motions.iter().any(|m| same_motion(m, last, 1e-6)),
+            "{:#?}",
+            none.motions
+        );
+        assert!(
+            none.stats.stopped_found * 4 >= 3 * opts.starts,
+            "{:?}",
+            none.stats
+        );
+    }
 }
 
 #[test]
@@ -181,11 +230,7 @@ fn a_start_on_a_known_motion_stops_at_once() {
 #[test]
 fn neighbourhoods_of_close_motions_do_not_overlap() {
     let sim = sim_at(W_BISTABLE);
-    let all = vec![
-        (0, motion(&sim, STICKY, 1)),
-        (1, motion(&sim, PASSING, 1)),
-        (2, motion(&sim, DOUBLED, 2)),
-    ];
+    let all = bistable_three(&sim);
     let known = KnownMotions::from_motions(&sim, &all, 0.0);
     let w = W_BISTABLE;
     for (a, _) in &all {
@@ -212,11 +257,55 @@ fn stable_motions(sim: &Simulator<Paper>) -> Vec<(usize, Motion)> {
         sim.start(0.0, 0.0, 0.0).expect("rest"),
         AttractorOptions::default(),
     ) {
-        if m.stability.is_some_and(|s| s.is_stable()) && !all.iter().any(|a| same_motion(a, &m, 1e-6)) {
+        if m.stability.is_some_and(|s| s.is_stable())
+            && !all.iter().any(|a| same_motion(a, &m, 1e-6))
+        {
             all.push(m);
         }
     }
     all.into_iter().enumerate().collect()
+}
+
+/// Periods that settling each start with nothing known (plain
+/// `attractor::find`, no stop, no learning) takes, and the time.
+fn plain_settling(
+    sim: &Simulator<Paper>,
+    all: &[(usize, Motion)],
+    opts: &SearchOptions,
+) -> (u64, f64) {
+    let empty = KnownMotions::new(sim, 0.0);
+    let table = KnownMotions::from_motions(sim, all, 0.0);
+    let t = cpu_seconds();
+    let mut plain = 0u64;
+    for (x, v) in starts(sim, &table, opts.starts, opts.margin) {
+        let start = sim.start(x, v, 0.0).expect("start");
+        plain += u64::from(settle(sim, &empty, start, opts.attractor).periods);
+    }
+    (plain, cpu_seconds() - t)
+}
+
+/// CPU time of this thread, in seconds (the machine may be shared: wall
+/// time would count the other processes' turns).
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
+/// The mean CPU time of `f`, in seconds, over enough repetitions to fill a
+/// fifth of a second (the kernel's accounting has a coarse tick).
+fn best_of<T>(mut f: impl FnMut() -> T) -> (f64, T) {
+    let t = cpu_seconds();
+    let mut reps = 0u32;
+    loop {
+        let out = f();
+        reps += 1;
+        let spent = cpu_seconds() - t;
+        if spent >= 0.2 || reps >= 10_000 {
+            return (spent / f64::from(reps), out);
+        }
+    }
 }
 
 /// The cost of one search (run with `--release -- --ignored --nocapture`).
@@ -228,32 +317,49 @@ fn cost_of_one_search() {
         let known = stable_motions(&sim);
         let names: Vec<String> = known
             .iter()
-            .map(|(_, m)| format!("{}^{}", m.structure.notation(Paper::INFO), m.structure.periods()))
+            .map(|(_, m)| {
+                format!(
+                    "{}^{}",
+                    m.structure.notation(Paper::INFO),
+                    m.structure.periods()
+                )
+            })
             .collect();
+        // The raw simulation: 200 periods from rest.
+        let (dt, events) = best_of(|| {
+            let mut events = 0usize;
+            let start = sim.start(0.0, 0.0, 0.0).expect("rest");
+            sim.run(start, 200.0 * TAU, |e| {
+                if e.kind != EventKind::Graze {
+                    events += 1
+                }
+            })
+            .expect("runs");
+            events
+        });
+        eprintln!(
+            "W = {w}: stable {}; simulation {:.1} events/period, {:.2} us/period, {:.2} us/event",
+            names.join(", "),
+            events as f64 / 200.0,
+            dt * 1e6 / 200.0,
+            dt * 1e6 / events as f64
+        );
         for k in [4, 8, 16, 32] {
             let opts = SearchOptions {
                 starts: k,
                 ..SearchOptions::default()
             };
+            let (tp, plain) = best_of(|| plain_settling(&sim, &known, &opts));
+            eprintln!(
+                "  K = {k:<3} plain find per start: {:8.1} us, periods {:5}",
+                tp * 1e6,
+                plain.0
+            );
             for (label, given) in [("known", &known[..]), ("none", &[][..])] {
-                let reps = 20;
-                let t = Instant::now();
-                let mut last = None;
-                for _ in 0..reps {
-                    last = Some(search(&sim, given, &opts));
-                }
-                let dt = t.elapsed().as_secs_f64() / reps as f64;
-                let s = last.expect("ran").stats;
-                let mut events = 0usize;
-                let start = sim.start(0.0, 0.0, 0.0).expect("rest");
-                sim.run(start, 100.0 * TAU, |e| {
-                    if e.kind != EventKind::Graze {
-                        events += 1
-                    }
-                })
-                .expect("runs");
+                let (dt, found) = best_of(|| search(&sim, given, &opts));
+                let s = found.stats;
                 eprintln!(
-                    "W = {w:<12} K = {k:<3} {label:<5}: {:8.1} us  periods {:5}  (stopped {} + {}, matched {}, new {}, other {}, failed {}); {:.1} events/period; stable: {}",
+                    "  K = {k:<3} {label:<5}: {:8.1} us  periods {:5}  (stopped {} + {}, matched {}, new {}, other {}, failed {})",
                     dt * 1e6,
                     s.periods,
                     s.stopped_known,
@@ -262,8 +368,6 @@ fn cost_of_one_search() {
                     s.new,
                     s.other,
                     s.failed,
-                    events as f64 / 100.0,
-                    names.join(", ")
                 );
             }
         }

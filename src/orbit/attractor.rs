@@ -522,10 +522,10 @@ pub fn find_or_stop<M: Model, T>(
                     let motion = candidate(sim, &events, m, periods, opts.newton)?;
                     if motion.is_admissible() {
                         return Ok(Settle::Attractor(Attractor::Periodic(primitive(
-                    sim,
-                    motion,
-                    opts.newton,
-                ))));
+                            sim,
+                            motion,
+                            opts.newton,
+                        ))));
                     }
                     last = Some(motion);
                 }

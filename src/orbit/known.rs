@@ -18,7 +18,7 @@ const TAU: f64 = 2.0 * std::f64::consts::PI;
 
 /// The neighbourhood's radius, relative to the motion's length scale, is at
 /// most this (a motion far from any bifurcation).
-pub const MAX_RADIUS: f64 = 1e-2;
+pub const MAX_RADIUS: f64 = 5e-2;
 
 /// The radius is also at most this fraction of the contraction margin
 /// `1 − ρ` (`ρ` the largest eigenvalue modulus): the neighbourhood shrinks as
@@ -265,7 +265,12 @@ impl KnownMotions {
     /// points and stroboscopic states; `None` if none is known.
     pub fn extent(&self) -> Option<[f64; 4]> {
         self.entries.iter().map(|e| e.extent).reduce(|a, b| {
-            [a[0].min(b[0]), a[1].max(b[1]), a[2].min(b[2]), a[3].max(b[3])]
+            [
+                a[0].min(b[0]),
+                a[1].max(b[1]),
+                a[2].min(b[2]),
+                a[3].max(b[3]),
+            ]
         })
     }
 
@@ -276,7 +281,8 @@ impl KnownMotions {
     /// The known motion whose neighbourhood holds the state of segment `seg`
     /// at `phase`, if `phase ≡ φ0 (mod 2π)` and there is one. Allocates nothing.
     pub fn near<M: Model>(&self, sim: &Simulator<M>, seg: &Segment, phase: f64) -> Option<usize> {
-        self.nearest(sim, seg, phase).map(|(i, _)| self.entries[i].id)
+        self.nearest(sim, seg, phase)
+            .map(|(i, _)| self.entries[i].id)
     }
 
     /// Like [`KnownMotions::near`]: the entry's index and the distance.
@@ -296,10 +302,7 @@ impl KnownMotions {
         for (i, e) in self.entries.iter().enumerate() {
             for s in &e.states {
                 let d = (x - s.x).abs().max((v - s.v).abs() / w);
-                if s.location == seg.location
-                    && d <= e.radius
-                    && best.is_none_or(|(_, b)| d < b)
-                {
+                if s.location == seg.location && d <= e.radius && best.is_none_or(|(_, b)| d < b) {
                     best = Some((i, d));
                 }
             }
