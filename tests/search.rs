@@ -373,3 +373,82 @@ fn cost_of_one_search() {
         }
     }
 }
+
+/// Where the period-2 motion lives (run with `--ignored --nocapture`).
+#[test]
+#[ignore]
+fn period_two_window() {
+    for i in 0..=30 {
+        let w = 3.9475 + 1.5e-3 * f64::from(i) / 30.0;
+        let sim = sim_at(w);
+        let opts = SearchOptions {
+            starts: 32,
+            ..SearchOptions::default()
+        };
+        let found = search(&sim, &[], &opts);
+        let names: Vec<String> = found
+            .motions
+            .iter()
+            .map(|m| m.structure.notation(Paper::INFO))
+            .collect();
+        eprintln!("W = {w:.5}: {}  {:?}", names.join(" + "), found.stats);
+    }
+}
+
+/// Per start: where plain settling lands, and where the stop says.
+#[test]
+#[ignore]
+fn stops_agree_with_plain_settling() {
+    for w in [3.948, W_BISTABLE, 3.9485] {
+        let sim = sim_at(w);
+        let opts = SearchOptions {
+            starts: 32,
+            ..SearchOptions::default()
+        };
+        let all = stable_motions_plain(&sim, &opts);
+        let table = KnownMotions::from_motions(&sim, &all, 0.0);
+        let empty = KnownMotions::new(&sim, 0.0);
+        let mut wrong = 0;
+        for (x, v) in starts(&sim, &table, opts.starts, opts.margin) {
+            let start = sim.start(x, v, 0.0).expect("start");
+            let plain = settle(&sim, &empty, start, opts.attractor);
+            let Ok(Settled::Attractor(Attractor::Periodic(p))) = plain.outcome else {
+                continue;
+            };
+            let truth = all
+                .iter()
+                .find(|(_, m)| same_motion(m, &p, 1e-6))
+                .map(|(i, _)| *i);
+            let stop = settle(&sim, &table, start, opts.attractor);
+            let said = match stop.outcome {
+                Ok(Settled::Known(i)) => Some(i),
+                _ => None,
+            };
+            if truth != said {
+                wrong += 1;
+            }
+            eprintln!(
+                "W = {w}: ({x:.3}, {v:.3}) plain {truth:?} in {} / stop {said:?} in {}",
+                plain.periods, stop.periods
+            );
+        }
+        eprintln!("W = {w}: {} motions, {wrong} wrong", all.len());
+    }
+}
+
+/// Every stable motion plain settling reaches from the starts.
+fn stable_motions_plain(sim: &Simulator<Paper>, opts: &SearchOptions) -> Vec<(usize, Motion)> {
+    let empty = KnownMotions::new(sim, 0.0);
+    let mut all: Vec<Motion> = Vec::new();
+    for (x, v) in starts(sim, &empty, opts.starts, opts.margin) {
+        let start = sim.start(x, v, 0.0).expect("start");
+        if let Ok(Settled::Attractor(Attractor::Periodic(m))) =
+            settle(sim, &empty, start, opts.attractor).outcome
+        {
+            if !all.iter().any(|a| same_motion(a, &m, 1e-6)) {
+                all.push(m);
+            }
+        }
+    }
+    all.into_iter().enumerate().collect()
+}
