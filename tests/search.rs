@@ -8,7 +8,7 @@ use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::known::{settle, stroboscopic_states, KnownMotions, Settled};
-use stickslip::orbit::motion::{solve, Motion};
+use stickslip::orbit::motion::{solve, Motion, OrbitError};
 use stickslip::orbit::periodic::NewtonOptions;
 use stickslip::orbit::structure::Structure;
 use stickslip::study::search::{coexisting, same_motion, search, starts, SearchOptions};
@@ -412,7 +412,7 @@ fn stops_agree_with_plain_settling() {
         for (x, v) in starts(&sim, &table, opts.starts, opts.margin) {
             let start = sim.start(x, v, 0.0).expect("start");
             let plain = settle(&sim, &empty, start, opts.attractor);
-            let Ok(Settled::Attractor(Attractor::Periodic(p))) = plain.outcome else {
+            let Some(p) = periodic(plain.outcome) else {
                 continue;
             };
             let truth = all
@@ -442,13 +442,22 @@ fn stable_motions_plain(sim: &Simulator<Paper>, opts: &SearchOptions) -> Vec<(us
     let mut all: Vec<Motion> = Vec::new();
     for (x, v) in starts(sim, &empty, opts.starts, opts.margin) {
         let start = sim.start(x, v, 0.0).expect("start");
-        if let Ok(Settled::Attractor(Attractor::Periodic(m))) =
-            settle(sim, &empty, start, opts.attractor).outcome
-        {
+        if let Some(m) = periodic(settle(sim, &empty, start, opts.attractor).outcome) {
             if !all.iter().any(|a| same_motion(a, &m, 1e-6)) {
                 all.push(m);
             }
         }
     }
     all.into_iter().enumerate().collect()
+}
+
+/// The periodic motion a settling found, if that is what it found.
+fn periodic(outcome: Result<Settled, OrbitError>) -> Option<Motion> {
+    match outcome {
+        Ok(Settled::Attractor(a)) => match *a {
+            Attractor::Periodic(m) => Some(m),
+            _ => None,
+        },
+        _ => None,
+    }
 }

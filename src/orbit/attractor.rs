@@ -373,7 +373,7 @@ pub fn find<M: Model>(
     opts: AttractorOptions,
 ) -> Result<Attractor, OrbitError> {
     match find_or_stop::<M, std::convert::Infallible>(sim, start, opts, None)? {
-        Settle::Attractor(a) => Ok(a),
+        Settle::Attractor(a) => Ok(*a),
         Settle::Stopped(never) => match never {},
     }
 }
@@ -382,20 +382,23 @@ pub fn find<M: Model>(
 #[derive(Clone, Debug, PartialEq)]
 pub enum Settle<T> {
     /// What the simulation settled to (as [`find`] returns it).
-    Attractor(Attractor),
+    Attractor(Box<Attractor>),
     /// The hook stopped the search with this value.
     Stopped(T),
+}
+
+fn settled<T>(a: Attractor) -> Result<Settle<T>, OrbitError> {
+    Ok(Settle::Attractor(Box::new(a)))
 }
 
 /// A hook called at every stroboscopic phase `start.phase + 2πn`
 /// (`n = 0, 1, …`) with the segment in force there; `Some` stops the search.
 pub type StroboscopicHook<'a, T> = &'a mut dyn FnMut(&Segment, f64) -> Option<T>;
 
-/// [`find`], with a hook that can stop the search at any stroboscopic phase
-/// (after whole forcing periods from the start): the simulation then runs
-/// period by period instead of in chunks, and a segment that outlasts a
-/// period is re-anchored at the stroboscopic phase (so that the event search
-/// never re-scans a long event-free stretch). Without a hook it is [`find`].
+/// [`find`], with a hook that can stop the search at any stroboscopic phase:
+/// the simulation then runs period by period, and a segment that outlasts a
+/// period is re-anchored there (so that the event search never re-scans a
+/// long event-free stretch). Without a hook it is exactly [`find`].
 pub fn find_or_stop<M: Model, T>(
     sim: &Simulator<M>,
     start: Segment,
@@ -403,10 +406,8 @@ pub fn find_or_stop<M: Model, T>(
     mut hook: Option<StroboscopicHook<'_, T>>,
 ) -> Result<Settle<T>, OrbitError> {
     let mut strobe = start.phase;
-    if let Some(stop) = hook.as_mut() {
-        if let Some(t) = stop(&start, strobe) {
-            return Ok(Settle::Stopped(t));
-        }
+    if let Some(t) = hook.as_mut().and_then(|stop| stop(&start, strobe)) {
+        return Ok(Settle::Stopped(t));
     }
     strobe += TAU;
     let cap = opts.cycle_cap(M::INFO);
@@ -456,16 +457,16 @@ pub fn find_or_stop<M: Model, T>(
             events.drain(..events.len() - keep);
         }
         if let Some(stick) = permanent_stick(sim, &seg) {
-            return Ok(Settle::Attractor(Attractor::Stick(stick)));
+            return settled(Attractor::Stick(stick));
         }
         if let Some(cycle) = autonomous_cycle(sim, &events) {
-            return Ok(Settle::Attractor(Attractor::Autonomous(cycle)));
+            return settled(Attractor::Autonomous(cycle));
         }
         if count == 0 {
             if let Location::Domain(j) = seg.location {
                 let (x, v) = sim.state_at(&seg, phase);
                 if let Some(nm) = no_motion_certificate(sim, j, x, v, phase) {
-                    return Ok(Settle::Attractor(Attractor::NoMotion(nm)));
+                    return settled(Attractor::NoMotion(nm));
                 }
             }
             continue;
@@ -490,11 +491,7 @@ pub fn find_or_stop<M: Model, T>(
             let motion = candidate(sim, &events, m, periods, opts.newton)?;
             let stable = motion.stability.is_some_and(|s| s.is_stable());
             if motion.is_admissible() && (stable || !need_stable) {
-                return Ok(Settle::Attractor(Attractor::Periodic(primitive(
-                    sim,
-                    motion,
-                    opts.newton,
-                ))));
+                return settled(Attractor::Periodic(primitive(sim, motion, opts.newton)));
             }
             last = Some(motion);
         }
@@ -521,11 +518,7 @@ pub fn find_or_stop<M: Model, T>(
                     tried_long.push((m, periods));
                     let motion = candidate(sim, &events, m, periods, opts.newton)?;
                     if motion.is_admissible() {
-                        return Ok(Settle::Attractor(Attractor::Periodic(primitive(
-                            sim,
-                            motion,
-                            opts.newton,
-                        ))));
+                        return settled(Attractor::Periodic(primitive(sim, motion, opts.newton)));
                     }
                     last = Some(motion);
                 }
@@ -533,9 +526,8 @@ pub fn find_or_stop<M: Model, T>(
         }
         if last_chunk {
             if let Some(motion) = last {
-                return motion
-                    .into_result()
-                    .map(|m| Settle::Attractor(Attractor::Periodic(m)));
+                let motion = motion.into_result()?;
+                return settled(Attractor::Periodic(motion));
             }
         }
     }
@@ -543,7 +535,7 @@ pub fn find_or_stop<M: Model, T>(
         (0..M::INFO.domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
     if undamped {
         if let Some(motion) = neutral_edge(sim, &events, cap, opts.newton) {
-            return Ok(Settle::Attractor(Attractor::Periodic(motion)));
+            return settled(Attractor::Periodic(motion));
         }
     }
     Err(OrbitError::Unsettled {

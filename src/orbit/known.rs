@@ -361,7 +361,7 @@ pub enum Settled {
     /// It entered the neighbourhood of this known motion.
     Known(usize),
     /// What [`crate::orbit::attractor::find`] finds (no known motion was approached).
-    Attractor(Attractor),
+    Attractor(Box<Attractor>),
 }
 
 /// The outcome of [`settle`] and its cost.

@@ -118,23 +118,25 @@ pub fn search<M: Model>(
         match settling.outcome {
             Ok(Settled::Known(id)) if id < given.len() => stats.stopped_known += 1,
             Ok(Settled::Known(_)) => stats.stopped_found += 1,
-            Ok(Settled::Attractor(Attractor::Periodic(m))) => {
-                if !m.stability.is_some_and(|s| s.is_stable()) || !m.is_admissible() {
-                    stats.other += 1;
-                } else if given
-                    .iter()
-                    .map(|(_, g)| g)
-                    .chain(&found)
-                    .any(|g| same_motion(g, &m, 1e-6))
-                {
-                    stats.matched += 1;
-                } else {
-                    stats.new += 1;
-                    neighbourhoods.insert(sim, given.len() + found.len(), &m);
-                    found.push(m);
+            Ok(Settled::Attractor(a)) => match *a {
+                Attractor::Periodic(m) => {
+                    if !m.stability.is_some_and(|s| s.is_stable()) || !m.is_admissible() {
+                        stats.other += 1;
+                    } else if given
+                        .iter()
+                        .map(|(_, g)| g)
+                        .chain(&found)
+                        .any(|g| same_motion(g, &m, 1e-6))
+                    {
+                        stats.matched += 1;
+                    } else {
+                        stats.new += 1;
+                        neighbourhoods.insert(sim, given.len() + found.len(), &m);
+                        found.push(m);
+                    }
                 }
-            }
-            Ok(Settled::Attractor(_)) => stats.other += 1,
+                _ => stats.other += 1,
+            },
             Err(_) => stats.failed += 1,
         }
     }
