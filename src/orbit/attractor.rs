@@ -372,6 +372,44 @@ pub fn find<M: Model>(
     start: Segment,
     opts: AttractorOptions,
 ) -> Result<Attractor, OrbitError> {
+    match find_or_stop::<M, std::convert::Infallible>(sim, start, opts, None)? {
+        Settle::Attractor(a) => Ok(*a),
+        Settle::Stopped(never) => match never {},
+    }
+}
+
+/// How [`find_or_stop`] ends: the attractor found, or the caller's stop.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Settle<T> {
+    /// What the simulation settled to (as [`find`] returns it).
+    Attractor(Box<Attractor>),
+    /// The hook stopped the search with this value.
+    Stopped(T),
+}
+
+fn settled<T>(a: Attractor) -> Result<Settle<T>, OrbitError> {
+    Ok(Settle::Attractor(Box::new(a)))
+}
+
+/// A hook called at every stroboscopic phase `start.phase + 2πn`
+/// (`n = 0, 1, …`) with the segment in force there; `Some` stops the search.
+pub type StroboscopicHook<'a, T> = &'a mut dyn FnMut(&Segment, f64) -> Option<T>;
+
+/// [`find`], with a hook that can stop the search at any stroboscopic phase:
+/// the simulation then runs period by period, and a segment that outlasts a
+/// period is re-anchored there (so that the event search never re-scans a
+/// long event-free stretch). Without a hook it is exactly [`find`].
+pub fn find_or_stop<M: Model, T>(
+    sim: &Simulator<M>,
+    start: Segment,
+    opts: AttractorOptions,
+    mut hook: Option<StroboscopicHook<'_, T>>,
+) -> Result<Settle<T>, OrbitError> {
+    let mut strobe = start.phase;
+    if let Some(t) = hook.as_mut().and_then(|stop| stop(&start, strobe)) {
+        return Ok(Settle::Stopped(t));
+    }
+    strobe += TAU;
     let cap = opts.cycle_cap(M::INFO);
     let mut seg = start;
     let mut events: Vec<Event> = Vec::new();
@@ -388,26 +426,47 @@ pub fn find<M: Model>(
         // Short chunks first (most motions settle fast), longer ones later.
         chunk = (chunk * 1.5).min(20.0 * TAU);
         let mut count = 0usize;
-        seg = sim.run(seg, phase, |e| {
+        let mut record = |e: &Event| {
             if e.kind != EventKind::Graze {
                 events.push(*e);
                 count += 1;
             }
-        })?;
+        };
+        if let Some(stop) = hook.as_mut() {
+            while strobe <= phase {
+                let before = seg;
+                seg = sim.run(seg, strobe, &mut record)?;
+                if seg == before {
+                    let (x, v) = sim.state_at(&seg, strobe);
+                    seg = Segment {
+                        x,
+                        v,
+                        phase: strobe,
+                        search_from: seg.search_from.max(strobe),
+                        ..seg
+                    };
+                }
+                if let Some(t) = stop(&seg, strobe) {
+                    return Ok(Settle::Stopped(t));
+                }
+                strobe += TAU;
+            }
+        }
+        seg = sim.run(seg, phase, &mut record)?;
         if events.len() > keep {
             events.drain(..events.len() - keep);
         }
         if let Some(stick) = permanent_stick(sim, &seg) {
-            return Ok(Attractor::Stick(stick));
+            return settled(Attractor::Stick(stick));
         }
         if let Some(cycle) = autonomous_cycle(sim, &events) {
-            return Ok(Attractor::Autonomous(cycle));
+            return settled(Attractor::Autonomous(cycle));
         }
         if count == 0 {
             if let Location::Domain(j) = seg.location {
                 let (x, v) = sim.state_at(&seg, phase);
                 if let Some(nm) = no_motion_certificate(sim, j, x, v, phase) {
-                    return Ok(Attractor::NoMotion(nm));
+                    return settled(Attractor::NoMotion(nm));
                 }
             }
             continue;
@@ -432,7 +491,7 @@ pub fn find<M: Model>(
             let motion = candidate(sim, &events, m, periods, opts.newton)?;
             let stable = motion.stability.is_some_and(|s| s.is_stable());
             if motion.is_admissible() && (stable || !need_stable) {
-                return Ok(Attractor::Periodic(primitive(sim, motion, opts.newton)));
+                return settled(Attractor::Periodic(primitive(sim, motion, opts.newton)));
             }
             last = Some(motion);
         }
@@ -459,7 +518,7 @@ pub fn find<M: Model>(
                     tried_long.push((m, periods));
                     let motion = candidate(sim, &events, m, periods, opts.newton)?;
                     if motion.is_admissible() {
-                        return Ok(Attractor::Periodic(primitive(sim, motion, opts.newton)));
+                        return settled(Attractor::Periodic(primitive(sim, motion, opts.newton)));
                     }
                     last = Some(motion);
                 }
@@ -467,7 +526,8 @@ pub fn find<M: Model>(
         }
         if last_chunk {
             if let Some(motion) = last {
-                return motion.into_result().map(Attractor::Periodic);
+                let motion = motion.into_result()?;
+                return settled(Attractor::Periodic(motion));
             }
         }
     }
@@ -475,7 +535,7 @@ pub fn find<M: Model>(
         (0..M::INFO.domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
     if undamped {
         if let Some(motion) = neutral_edge(sim, &events, cap, opts.newton) {
-            return Ok(Attractor::Periodic(motion));
+            return settled(Attractor::Periodic(motion));
         }
     }
     Err(OrbitError::Unsettled {

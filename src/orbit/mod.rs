@@ -6,13 +6,15 @@
 //! * [`admissible`] — admissibility of a solved motion, with signed margins;
 //! * [`stability`] — the monodromy matrix and its eigenvalues;
 //! * [`motion`] — a solved, checked periodic motion;
-//! * [`attractor`] — what a simulation settles on: a motion, a stick, a family.
+//! * [`attractor`] — what a simulation settles on: a motion, a stick, a family;
+//! * [`known`] — known stable motions seen stroboscopically, and a settle that stops near one.
 //!
 //! Depends on [`crate::model`](mod@crate::model) and [`crate::dynamics`].
 
 pub mod admissible;
 pub mod attractor;
 pub mod family;
+pub mod known;
 pub mod motion;
 pub mod periodic;
 pub mod stability;

@@ -1,11 +1,13 @@
 //! The study layer: analyses over parameters, built on the orbit layer.
 //!
 //! * [`sweep`] — one-parameter continuation with located transitions;
+//! * [`search`] — every coexisting stable motion, from many starts;
 //! * [`map`] — two-parameter maps of what lives where, parallel and resumable;
 //! * [`trade`] — the speed/accuracy trade of a smooth law's N-piece models.
 //!
 //! Continuation, two-parameter curves, chaos and basins belong here too.
 
 pub mod map;
+pub mod search;
 pub mod sweep;
 pub mod trade;
