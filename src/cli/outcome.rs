@@ -36,10 +36,22 @@ impl Outcome {
 
     /// Print it; the exit status.
     pub fn print(self) -> ExitCode {
-        let out = self.stdout;
-        print!("{out}");
+        use std::io::Write;
+        let mut out = self.stdout;
         if !out.ends_with('\n') {
-            println!();
+            out.push('\n');
+        }
+        // A reader that stops early (`stickslip ... | head`) closes the pipe:
+        // that is no error of ours, and no reason to panic.
+        let mut stdout = std::io::stdout().lock();
+        if let Err(e) = stdout
+            .write_all(out.as_bytes())
+            .and_then(|()| stdout.flush())
+        {
+            if e.kind() != std::io::ErrorKind::BrokenPipe {
+                eprintln!("error: cannot write the output: {e}");
+                return ExitCode::FAILURE;
+            }
         }
         for note in &self.notes {
             eprintln!("{note}");

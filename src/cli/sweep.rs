@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::Args;
 use stickslip::output::figure::sweep::plot_sweep;
 use stickslip::output::sweep_table;
-use stickslip::study::sweep::sweep;
+use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
 
 use super::args::{check_plot_path, with_model, Assignments, ParamRange, WithModel};
@@ -36,6 +36,15 @@ pub struct SweepArgs {
     /// arclength continuation). Bifurcations and transitions stay.
     #[arg(long)]
     no_unstable: bool,
+    /// Starts of the global search for coexisting motions (simulations from
+    /// K well-spread initial conditions, each stopped as soon as it nears a
+    /// known stable motion); 0 turns the search off.
+    #[arg(long, value_name = "K", default_value_t = SweepOptions::default().starts)]
+    starts: usize,
+    /// Run the global search at every k-th grid value (and just past every
+    /// transition); 0: only past transitions.
+    #[arg(long, value_name = "k", default_value_t = SweepOptions::default().every)]
+    every: usize,
 }
 
 /// The sweep as text or JSON, and its figure.
@@ -60,7 +69,12 @@ impl WithModel for SweepCmd {
             count,
         } = ParamRange::parse(&self.args.param)?;
         let base = set.params::<M>()?;
-        let sw = sweep::<M>(base, &name, from, to, count, Default::default())?;
+        let opts = SweepOptions {
+            starts: self.args.starts,
+            every: self.args.every,
+            ..SweepOptions::default()
+        };
+        let sw = sweep::<M>(base, &name, from, to, count, opts)?;
         let unstable = !self.args.no_unstable;
         if let Some(path) = &self.args.plot {
             let title = format!("{} sweep of {name} ({set})", M::INFO.name);

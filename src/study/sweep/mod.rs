@@ -1,0 +1,468 @@
+//! Bifurcation diagrams: every periodic motion along one parameter, its
+//! stable and unstable parts, where it is born and where it dies (SPEC §3,
+//! §7, §9, §10).
+//!
+//! The sweep seeds branches by simulation (from rest at both ends of the
+//! range, and from a global search: many starts every k-th grid value and
+//! just past every transition, each stopped as soon as it nears a known
+//! stable motion), and follows every branch by pseudo-arclength
+//! continuation ([`crate::bifurcation`]) around folds, with its unstable
+//! parts. A branch ends at a non-smooth transition (an admissibility
+//! condition's margin crosses zero: grazing, stick onset or vanishing,
+//! passable onset), located to about 1e-12 in the parameter; just past it a
+//! simulation finds what lives there, which is followed in turn. The
+//! eigenvalue bifurcations (fold, branch point, period doubling,
+//! Neimark–Sacker) are located on the branches to about 1e-10, and the
+//! branches born at branch points and period doublings are followed too.
+//! The motions at the grid values are read off the branches by Newton; no
+//! motion (NM) regimes are checked at every grid value from their closed form.
+
+use serde::Serialize;
+
+use crate::bifurcation::branch::{Branch, EndReason};
+use crate::bifurcation::ContinuationOptions;
+use crate::model::param::{ParamError, ParamSet};
+use crate::model::Model;
+use crate::orbit::attractor::{AttractorOptions, NoMotion, PermanentStick};
+use crate::orbit::motion::{Motion, OrbitError};
+use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::stability::Stability;
+
+mod explore;
+mod grid;
+mod rest;
+mod settle;
+
+use explore::Explorer;
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+pub use crate::bifurcation::TransitionKind;
+
+/// A located transition.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Transition {
+    /// The parameter value.
+    pub value: f64,
+    /// The motion that ends there.
+    pub from: String,
+    /// What the simulation finds just past it.
+    pub to: String,
+    /// The kind.
+    pub kind: TransitionKind,
+    /// The boundary involved.
+    pub boundary: Option<String>,
+}
+
+/// A motion at one parameter value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MotionSummary {
+    /// `P_{...}` or `NM`.
+    pub structure: String,
+    /// Forcing periods per cycle.
+    #[serde(rename = "N")]
+    pub n: u32,
+    /// `W t_0 mod 2π` of the first switching point.
+    #[serde(rename = "start_Wt")]
+    pub start_wt: f64,
+    /// `x_0`.
+    pub start_x: f64,
+    /// Eigenvalues `[re, im]`.
+    pub eigenvalues: Vec<[f64; 2]>,
+    /// Stable.
+    pub stable: bool,
+    /// For NM, the largest velocity of the steady response.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_v: Option<f64>,
+    /// Every switching point (phase mod 2π, x) — for the figures.
+    #[serde(skip)]
+    pub points: Vec<SwitchingPoint>,
+}
+
+/// All motions found at one grid value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SweepPoint {
+    /// The parameter value.
+    pub value: f64,
+    /// The motions.
+    pub motions: Vec<MotionSummary>,
+}
+
+/// A whole sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweep {
+    /// Parameter name.
+    pub param: String,
+    /// Grid points, ascending.
+    pub points: Vec<SweepPoint>,
+    /// Transitions, ascending.
+    pub transitions: Vec<Transition>,
+    /// Every branch followed, stable and unstable parts, in the order found.
+    pub branches: Vec<BranchSummary>,
+    /// The eigenvalue bifurcations on the branches, ascending.
+    pub bifurcations: Vec<BifurcationSummary>,
+}
+
+/// One computed point of a branch.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchSample {
+    /// The parameter value (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// `W t_0 mod 2π` of the first switching point.
+    #[serde(rename = "start_Wt")]
+    pub start_wt: f64,
+    /// `x_0`.
+    pub start_x: f64,
+    /// Eigenvalues of `DP`, `[re, im]`, largest modulus first.
+    pub eigenvalues: Vec<[f64; 2]>,
+    /// Both eigenvalues inside the unit circle.
+    pub stable: bool,
+    /// Every switching point (phase mod 2π, x) — for the figures.
+    #[serde(skip)]
+    pub points: Vec<SwitchingPoint>,
+}
+
+/// Why a branch ends, and where.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchEndSummary {
+    /// The parameter value (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// `parameter_bound`, a non-smooth transition's kind (`grazing`,
+    /// `stick_onset`, `stick_vanishing`, `passable_onset`), `closed_loop`,
+    /// `newton_failure` or `max_points`.
+    pub reason: String,
+    /// For a transition, the boundary involved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub boundary: Option<String>,
+    /// For `newton_failure`, why Newton failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detail: Option<String>,
+}
+
+/// A branch of periodic motions of one structure.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BranchSummary {
+    /// Its number, referred to by `bifurcations[].branch` and `born`.
+    pub id: usize,
+    /// `P_{...}`.
+    pub structure: String,
+    /// Forcing periods per cycle.
+    #[serde(rename = "N")]
+    pub n: u32,
+    /// Its points in arclength order (a branch may turn back at folds).
+    pub points: Vec<BranchSample>,
+    /// How it ends at each side (two ends; one for a branch born at a
+    /// bifurcation and followed away from it; none for a closed loop).
+    pub ends: Vec<BranchEndSummary>,
+}
+
+/// An eigenvalue bifurcation on a branch.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BifurcationSummary {
+    /// The parameter value (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// `fold`, `branch_point`, `period_doubling` or `neimark_sacker`.
+    pub kind: TransitionKind,
+    /// The motion's structure.
+    pub structure: String,
+    /// Its forcing periods per cycle.
+    #[serde(rename = "N")]
+    pub n: u32,
+    /// The critical eigenvalue `[re, im]` (`im ≥ 0`).
+    pub eigenvalue: [f64; 2],
+    /// The branch it lies on.
+    pub branch: usize,
+    /// The branches born there.
+    pub born: Vec<usize>,
+    /// `W t_0 mod 2π` of the motion there.
+    #[serde(rename = "start_Wt")]
+    pub start_wt: f64,
+    /// `x_0` of the motion there.
+    pub start_x: f64,
+}
+
+impl Sweep {
+    /// Today's view without unstable motions: the unstable points of every
+    /// branch and the unstable motions at the grid points are dropped
+    /// (branches left with no point go too); transitions and bifurcations stay.
+    pub fn stable_only(&self) -> Sweep {
+        let mut out = self.clone();
+        for p in &mut out.points {
+            p.motions.retain(|m| m.stable);
+        }
+        for b in &mut out.branches {
+            b.points.retain(|q| q.stable);
+        }
+        out.branches.retain(|b| !b.points.is_empty());
+        out
+    }
+}
+
+/// Why a sweep could not run.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SweepError {
+    /// Bad parameters.
+    #[error(transparent)]
+    Params(#[from] ParamError),
+    /// Not a parameter of the model.
+    #[error("`{0}` is not a free parameter of the model")]
+    UnknownParam(String),
+    /// A bad range.
+    #[error("bad sweep range: {0}")]
+    Range(String),
+    /// The first motion could not be found.
+    #[error(transparent)]
+    Orbit(#[from] OrbitError),
+}
+
+/// The sweep's settings.
+#[derive(Clone, Copy, Debug)]
+pub struct SweepOptions {
+    /// Non-smooth transitions are located to this absolute tolerance in the parameter.
+    pub tolerance: f64,
+    /// Options of the simulations that find new motions.
+    pub attractor: AttractorOptions,
+    /// The continuation's settings (its bounds are the sweep's range).
+    pub continuation: ContinuationOptions,
+    /// Starts of the global search (`--starts K`; 0: no global search).
+    pub starts: usize,
+    /// The global search runs at every k-th grid value (`--every k`; 0:
+    /// never) and just past every transition.
+    pub every: usize,
+    /// At most this many branches are followed.
+    pub max_branches: usize,
+}
+
+impl Default for SweepOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-12,
+            attractor: AttractorOptions {
+                max_periods: 1500,
+                ..AttractorOptions::default()
+            },
+            continuation: ContinuationOptions::default(),
+            starts: 8,
+            every: 20,
+            max_branches: 64,
+        }
+    }
+}
+
+fn with<P: ParamSet>(base: &P, index: usize, value: f64) -> Result<P, ParamError> {
+    let mut p = *base;
+    p.set(index, value);
+    p.check()?;
+    Ok(p)
+}
+
+fn summary<M: Model>(m: &Motion) -> MotionSummary {
+    let st = m
+        .stability
+        .unwrap_or_else(|| Stability::of(&nalgebra::Matrix2::zeros()));
+    MotionSummary {
+        structure: m.structure.notation(M::INFO),
+        n: m.structure.periods(),
+        start_wt: m.points[0].phase.rem_euclid(TAU),
+        start_x: m.points[0].x,
+        eigenvalues: st.eigenvalues.to_vec(),
+        stable: st.is_stable(),
+        max_v: None,
+        points: m
+            .points
+            .iter()
+            .map(|p| SwitchingPoint {
+                phase: p.phase.rem_euclid(TAU),
+                x: p.x,
+            })
+            .collect(),
+    }
+}
+
+fn nm_summary(nm: &NoMotion) -> MotionSummary {
+    MotionSummary {
+        structure: "NM".into(),
+        n: 1,
+        start_wt: f64::NAN,
+        start_x: f64::NAN,
+        eigenvalues: vec![],
+        stable: true,
+        max_v: Some(nm.max_v),
+        points: vec![],
+    }
+}
+
+fn stick_summary(s: &PermanentStick) -> MotionSummary {
+    MotionSummary {
+        structure: "stick".into(),
+        n: 1,
+        start_wt: s.since.rem_euclid(TAU),
+        start_x: s.x,
+        eigenvalues: vec![],
+        stable: true,
+        max_v: None,
+        points: vec![],
+    }
+}
+
+impl MotionSummary {
+    fn same_as(&self, other: &MotionSummary) -> bool {
+        if self.structure != other.structure || self.n != other.n {
+            return false;
+        }
+        if self.structure == "NM" {
+            return true;
+        }
+        if self.structure == "stick" {
+            return (self.start_x - other.start_x).abs() < 1e-6;
+        }
+        let d = (self.start_wt - other.start_wt).abs();
+        (d.min(TAU - d) < 1e-6) && (self.start_x - other.start_x).abs() < 1e-6
+    }
+}
+
+fn sample(value: f64, points: &[SwitchingPoint], st: &Stability) -> BranchSample {
+    BranchSample {
+        value,
+        start_wt: points[0].phase.rem_euclid(TAU),
+        start_x: points[0].x,
+        eigenvalues: st.eigenvalues.to_vec(),
+        stable: st.is_stable(),
+        points: points
+            .iter()
+            .map(|p| SwitchingPoint {
+                phase: p.phase.rem_euclid(TAU),
+                x: p.x,
+            })
+            .collect(),
+    }
+}
+
+fn branch_summary<M: Model>(id: usize, b: &Branch) -> BranchSummary {
+    BranchSummary {
+        id,
+        structure: b.structure.notation(M::INFO),
+        n: b.structure.periods(),
+        points: b
+            .points
+            .iter()
+            .map(|q| sample(q.value, &q.points, &q.stability))
+            .collect(),
+        ends: b
+            .ends
+            .iter()
+            .map(|e| {
+                let detail = match &e.reason {
+                    EndReason::NewtonFailure(why) => Some(why.clone()),
+                    _ => None,
+                };
+                let boundary = match e.reason {
+                    EndReason::Transition {
+                        boundary: Some(k), ..
+                    } => Some(M::INFO.boundaries[k].label.to_string()),
+                    _ => None,
+                };
+                BranchEndSummary {
+                    value: e.at.value,
+                    reason: e.reason.name().to_string(),
+                    boundary,
+                    detail,
+                }
+            })
+            .collect(),
+    }
+}
+
+/// Sweep parameter `name` over `count` values from `from` to `to`.
+pub fn sweep<M: Model>(
+    base: M::Params,
+    name: &str,
+    from: f64,
+    to: f64,
+    count: usize,
+    opts: SweepOptions,
+) -> Result<Sweep, SweepError> {
+    let index = <M::Params as ParamSet>::index_of(name)
+        .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
+    if count < 2 || !from.is_finite() || !to.is_finite() || from >= to {
+        return Err(SweepError::Range(format!(
+            "{name}={from}:{to}:{count}: need from < to and at least 2 points"
+        )));
+    }
+    let values: Vec<f64> = (0..count)
+        .map(|i| from + (to - from) * i as f64 / (count - 1) as f64)
+        .collect();
+    // The parameters must be valid at both ends (the error says which).
+    with(&base, index, from)?;
+    with(&base, index, to)?;
+    let mut explorer = Explorer::<M>::new(&base, index, (from, to), &opts);
+    explorer.seed(&values);
+    let nm = rest::regimes::<M>(&base, index, &values, &opts, &mut explorer);
+    explorer.search_all();
+
+    let points = values
+        .iter()
+        .zip(&nm)
+        .map(|(&value, nm)| {
+            let mut motions: Vec<MotionSummary> = Vec::new();
+            for (_, m) in explorer.motions_at(value) {
+                let s = summary::<M>(&m);
+                if !motions.iter().any(|x| x.same_as(&s)) {
+                    motions.push(s);
+                }
+            }
+            for n in nm {
+                let s = nm_summary(n);
+                if !motions.iter().any(|x| x.same_as(&s)) {
+                    motions.push(s);
+                }
+            }
+            for (v, s) in &explorer.sticks {
+                if *v == value && !motions.iter().any(|x| x.same_as(s)) {
+                    motions.push(s.clone());
+                }
+            }
+            SweepPoint { value, motions }
+        })
+        .collect();
+    let branches: Vec<BranchSummary> = explorer
+        .branches
+        .iter()
+        .enumerate()
+        .map(|(id, b)| branch_summary::<M>(id, b))
+        .collect();
+    let mut bifurcations: Vec<BifurcationSummary> = explorer
+        .bifurcations
+        .iter()
+        .map(|l| {
+            let b = &explorer.branches[l.branch];
+            let bif = &b.bifurcations[l.which];
+            BifurcationSummary {
+                value: bif.at.value,
+                kind: bif.kind,
+                structure: b.structure.notation(M::INFO),
+                n: b.structure.periods(),
+                eigenvalue: bif.eigenvalue,
+                branch: l.branch,
+                born: l.born.clone(),
+                start_wt: bif.at.points[0].phase.rem_euclid(TAU),
+                start_x: bif.at.points[0].x,
+            }
+        })
+        .collect();
+    bifurcations.sort_by(|a, b| a.value.total_cmp(&b.value));
+    let mut transitions = explorer.transitions;
+    transitions.sort_by(|a, b| a.value.total_cmp(&b.value));
+    transitions
+        .dedup_by(|a, b| (a.value - b.value).abs() < 1e-8 && a.kind == b.kind && a.from == b.from);
+    Ok(Sweep {
+        param: name.to_string(),
+        points,
+        transitions,
+        branches,
+        bifurcations,
+    })
+}

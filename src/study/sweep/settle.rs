@@ -1,0 +1,69 @@
+//! What lives at a parameter value where no followed branch says: found by
+//! simulation, from rest or from the state of a motion that just ended.
+
+use crate::dynamics::simulate::{Location, Segment, SimOptions, Simulator};
+use crate::model::Model;
+use crate::orbit::attractor::{self, Attractor};
+use crate::orbit::motion::{Motion, OrbitError};
+
+use super::SweepOptions;
+
+/// The name a transition's `to` gives what the simulation found:
+/// `P_{...}` (with `^N` for N > 1 forcing periods), `NM`, `stick`,
+/// `autonomous`, `unsettled` or `invalid`.
+pub(super) fn name<M: Model>(found: &Result<Attractor, OrbitError>) -> String {
+    match found {
+        Ok(Attractor::Periodic(m)) => motion_name::<M>(m),
+        Ok(Attractor::NoMotion(_)) => "NM".into(),
+        Ok(Attractor::Stick(_)) => "stick".into(),
+        Ok(Attractor::Autonomous(_)) => "autonomous".into(),
+        Err(OrbitError::Params(_)) | Err(OrbitError::Simulation(_)) => "invalid".into(),
+        Err(_) => "unsettled".into(),
+    }
+}
+
+/// `P_{...}`, with `^N` for a motion of N > 1 forcing periods.
+pub(super) fn motion_name<M: Model>(m: &Motion) -> String {
+    let n = m.structure.periods();
+    if n > 1 {
+        format!("{}^{n}", m.structure.notation(M::INFO))
+    } else {
+        m.structure.notation(M::INFO)
+    }
+}
+
+/// Simulate from rest.
+pub(super) fn from_rest<M: Model>(
+    sim: &Simulator<M>,
+    opts: &SweepOptions,
+) -> Result<Attractor, OrbitError> {
+    let start = sim.start(0.0, 0.0, 0.0)?;
+    attractor::find(sim, start, opts.attractor)
+}
+
+/// Simulate from the first switching point of `old` (a motion at a nearby
+/// parameter value, usually one that ends between there and here).
+pub(super) fn from_motion<M: Model>(
+    sim: &Simulator<M>,
+    old: &Motion,
+    opts: &SweepOptions,
+) -> Result<Attractor, OrbitError> {
+    let first = M::INFO.mappings[old.structure.steps()[0]];
+    let pt = old.points[0];
+    let start = Segment {
+        x: pt.x,
+        v: sim.velocity(first.from),
+        phase: pt.phase,
+        location: match first.domain {
+            Some(j) => Location::Domain(j),
+            None => Location::Stick,
+        },
+        search_from: pt.phase,
+    };
+    attractor::find(sim, start, opts.attractor)
+}
+
+/// A simulator at `p`, if the parameters are valid.
+pub(super) fn simulator<M: Model>(p: M::Params) -> Option<Simulator<M>> {
+    Simulator::<M>::new(p, SimOptions::default()).ok()
+}

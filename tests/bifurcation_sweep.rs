@@ -1,0 +1,233 @@
+//! The sweep's bifurcation analysis (issue 11), each claim checked by an
+//! independent computation: the `orbit` command at every reported
+//! bifurcation, simulations of the branches' points, and the two defects of
+//! the natural-parameter sweep as regression tests.
+
+use std::process::Command;
+
+use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
+use stickslip::model::Model;
+use stickslip::models::paper::{Paper, Params};
+use stickslip::orbit::periodic::SwitchingPoint;
+use stickslip::orbit::structure::Structure;
+use stickslip::study::sweep::{sweep, Sweep, SweepOptions, TransitionKind};
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+/// The period-doubling window of the issue: `W = 10.7…10.95`, `Q0 = 100`, `mu3 = 3`.
+fn pd_params() -> Params {
+    Params {
+        Q0: 100.0,
+        mu3: 3.0,
+        ..Params::default()
+    }
+}
+
+fn pd_sweep() -> Sweep {
+    sweep::<Paper>(pd_params(), "W", 10.7, 10.95, 26, SweepOptions::default()).expect("sweep runs")
+}
+
+/// Simulate `periods` forcing periods from the first switching point of a
+/// motion of `structure` at `p`; the events (grazes left out) and where the
+/// simulation is at the end.
+fn simulate(
+    p: Params,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    periods: u32,
+) -> (usize, f64, f64) {
+    let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("parameters");
+    let first = Paper::INFO.mappings[structure.steps()[0]];
+    let p0 = points[0];
+    let seg = Segment {
+        x: p0.x,
+        v: sim.velocity(first.from),
+        phase: p0.phase,
+        location: first.domain.map_or(Location::Stick, Location::Domain),
+        search_from: p0.phase,
+    };
+    let end = p0.phase + TAU * periods as f64;
+    let mut events = Vec::new();
+    let seg = sim
+        .run(seg, end, |e| {
+            if e.kind != EventKind::Graze {
+                events.push(*e)
+            }
+        })
+        .expect("simulation runs");
+    let (x, _) = sim.state_at(&seg, end);
+    (events.len(), end, x)
+}
+
+#[test]
+fn a_period_doubling_is_one_classified_event_and_the_doubled_branch_is_followed() {
+    // Defect 1 of the issue: the natural-parameter sweep printed
+    // `eigenvalue P_{3_33 4_33} -> P_{3_33 4_33}` nine times here.
+    let s = pd_sweep();
+    let pd: Vec<_> = s
+        .bifurcations
+        .iter()
+        .filter(|b| b.kind == TransitionKind::PeriodDoubling && b.structure == "P_{3_33 4_33}")
+        .collect();
+    assert_eq!(pd.len(), 1, "{:#?}", s.bifurcations);
+    let pd = pd[0];
+    assert!(pd.value > 10.7 && pd.value < 10.95);
+    assert!((pd.eigenvalue[0] + 1.0).abs() < 1e-7 && pd.eigenvalue[1] == 0.0);
+    let same: Vec<_> = s
+        .transitions
+        .iter()
+        .filter(|t| t.from == "P_{3_33 4_33}" && t.to == "P_{3_33 4_33}")
+        .collect();
+    assert!(same.is_empty(), "{same:#?}");
+    // The doubled branch: the structure applied twice, N = 2.
+    assert_eq!(pd.born.len(), 1, "{pd:#?}");
+    let born = &s.branches[pd.born[0]];
+    assert_eq!(born.n, 2);
+    assert_eq!(born.structure, "P_{3_33 4_33 3_33 4_33}");
+    // A point of it away from the bifurcation is a motion of two forcing
+    // periods and not of one (simulation, not Newton).
+    let q = born
+        .points
+        .iter()
+        .max_by(|a, b| {
+            (a.value - pd.value)
+                .abs()
+                .total_cmp(&(b.value - pd.value).abs())
+        })
+        .expect("points");
+    assert!(
+        (q.value - pd.value).abs() > 1e-4,
+        "the doubled branch is too short: {born:#?}"
+    );
+    let p = Params {
+        W: q.value,
+        ..pd_params()
+    };
+    let st = Structure::parse(Paper::INFO, &born.structure, 2).expect("structure");
+    let (events, _, x2) = simulate(p, &st, &q.points, 2);
+    assert_eq!(events, 4);
+    assert!(
+        (x2 - q.points[0].x).abs() < 1e-7,
+        "not 2-periodic: {x2} vs {}",
+        q.points[0].x
+    );
+    let (_, _, x1) = simulate(p, &st, &q.points, 1);
+    assert!((x1 - q.points[0].x).abs() > 1e-5, "1-periodic: {x1}");
+}
+
+/// The eigenvalues `orbit --json` gives for a motion at a parameter value.
+fn orbit_eigenvalues(structure: &str, n: u32, set: &str, guess: (f64, f64)) -> Vec<[f64; 2]> {
+    let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args([
+            "orbit",
+            "--structure",
+            structure,
+            "--periods",
+            &n.to_string(),
+            "--set",
+            set,
+            "--guess",
+            &format!("{:.17},{:.17}", guess.0, guess.1),
+            "--json",
+        ])
+        .output()
+        .expect("runs");
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    doc["eigenvalues"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no eigenvalues: {doc}"))
+        .iter()
+        .map(|e| [e[0].as_f64().expect("re"), e[1].as_f64().expect("im")])
+        .collect()
+}
+
+#[test]
+fn at_every_bifurcation_the_orbit_command_gives_the_critical_eigenvalue() {
+    let s = pd_sweep();
+    assert!(!s.bifurcations.is_empty());
+    for b in &s.bifurcations {
+        let set = format!("Q0=100,mu3=3,W={:.17}", b.value);
+        let ev = orbit_eigenvalues(&b.structure, b.n, &set, (b.start_wt, b.start_x));
+        let hit = ev.iter().any(|e| match b.kind {
+            TransitionKind::Fold | TransitionKind::BranchPoint => {
+                (e[0] - 1.0).abs() < 1e-7 && e[1].abs() < 1e-7
+            }
+            TransitionKind::PeriodDoubling => (e[0] + 1.0).abs() < 1e-7 && e[1].abs() < 1e-7,
+            TransitionKind::NeimarkSacker => (e[0].hypot(e[1]) - 1.0).abs() < 1e-7,
+            _ => false,
+        });
+        assert!(hit, "{:?} at W = {}: orbit gives {ev:?}", b.kind, b.value);
+    }
+}
+
+#[test]
+fn every_unstable_branch_point_is_a_motion_by_simulation() {
+    let s = pd_sweep();
+    let mut checked = 0;
+    for b in &s.branches {
+        let st = Structure::parse(Paper::INFO, &b.structure, b.n).expect("structure");
+        for q in b.points.iter().filter(|q| !q.stable) {
+            let p = Params {
+                W: q.value,
+                ..pd_params()
+            };
+            let (events, _, x) = simulate(p, &st, &q.points, b.n);
+            // One cycle from the first switching point: the structure's
+            // events, back at the start (an unstable motion leaves only slowly).
+            assert_eq!(events, st.len(), "W = {}: {}", q.value, b.structure);
+            assert!(
+                (x - q.points[0].x).abs() < 1e-6,
+                "W = {}: {x} vs {}",
+                q.value,
+                q.points[0].x
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 5, "only {checked} unstable points");
+}
+
+#[test]
+fn the_period_two_motion_of_the_bistable_window_is_found() {
+    // Defect 2 of the issue: at W = 3.9482584517, Q0 = 70 the sweep reported
+    // two stable period-1 motions, while a simulation from rest lands on a
+    // third, a stable period-2 motion that attracts almost every start.
+    let base = Params {
+        Q0: 70.0,
+        ..Params::default()
+    };
+    let s = sweep::<Paper>(base, "W", 3.9475, 3.949, 7, SweepOptions::default()).expect("sweep");
+    let want = Structure::parse(
+        Paper::INFO,
+        "P_{3_31 0_11 1_11 3_13 4_33 3_31 1_11 3_13 4_33}",
+        2,
+    )
+    .expect("structure");
+    let rotations = |a: &Structure, b: &Structure| {
+        let (x, y) = (a.steps(), b.steps());
+        x.len() == y.len()
+            && (0..x.len()).any(|r| (0..x.len()).all(|k| x[(r + k) % x.len()] == y[k]))
+    };
+    let found: Vec<_> = s
+        .points
+        .iter()
+        .filter(|p| {
+            p.motions.iter().any(|m| {
+                m.n == 2
+                    && m.stable
+                    && Structure::parse(Paper::INFO, &m.structure, 2)
+                        .is_ok_and(|st| rotations(&st, &want))
+            })
+        })
+        .map(|p| p.value)
+        .collect();
+    assert!(!found.is_empty(), "{:#?}", s.points);
+    // And the period-1 motions stay reported beside it.
+    let w = found[0];
+    let at = s.points.iter().find(|p| p.value == w).expect("point");
+    assert!(
+        at.motions.iter().filter(|m| m.n == 1 && m.stable).count() >= 1,
+        "{at:#?}"
+    );
+}
