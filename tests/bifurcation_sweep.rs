@@ -28,8 +28,9 @@ fn pd_sweep() -> Sweep {
 }
 
 /// Simulate `periods` forcing periods from the first switching point of a
-/// motion of `structure` at `p`; the events (grazes left out) and where the
-/// simulation is at the end.
+/// motion of `structure` at `p` (and a hair more, so that an event due
+/// exactly at the end is seen): the number of events (grazes left out) and
+/// the phase and displacement of the last one.
 fn simulate(
     p: Params,
     structure: &Structure,
@@ -48,15 +49,14 @@ fn simulate(
     };
     let end = p0.phase + TAU * periods as f64;
     let mut events = Vec::new();
-    let seg = sim
-        .run(seg, end, |e| {
-            if e.kind != EventKind::Graze {
-                events.push(*e)
-            }
-        })
-        .expect("simulation runs");
-    let (x, _) = sim.state_at(&seg, end);
-    (events.len(), end, x)
+    sim.run(seg, end + 1e-6, |e| {
+        if e.kind != EventKind::Graze {
+            events.push(*e)
+        }
+    })
+    .expect("simulation runs");
+    let last = events.last().expect("an event");
+    (events.len(), last.phase - end, last.x)
 }
 
 #[test]

@@ -62,7 +62,7 @@ impl Default for ContinuationOptions {
             bounds: (0.0, 1.0),
             initial_step: 1e-2,
             min_step: 1e-9,
-            max_step: 5e-2,
+            max_step: 0.2,
             max_points: 5000,
             bifurcation_tolerance: 1e-10,
             transition_tolerance: 1e-12,
@@ -175,7 +175,8 @@ impl<M: Model> Continuer<'_, M> {
         let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
         let mut margin = f64::INFINITY;
         let mut worst = None;
-        for c in conditions(&sim, self.sys.structure(), &x.points) {
+        let all = conditions(&sim, self.sys.structure(), &x.points);
+        for c in &all {
             let g = if c.margin.is_nan() {
                 f64::NEG_INFINITY
             } else {
@@ -183,6 +184,20 @@ impl<M: Model> Continuer<'_, M> {
             };
             if g < margin || worst.is_none() {
                 margin = g;
+                worst = Some((c.kind, c.boundary));
+            }
+        }
+        // On a stick boundary an arrival that turns tangential is the same
+        // event as a force criterion that changes sign (the input force of
+        // the arriving side vanishes with the acceleration): it is named by
+        // the force criterion (stick onset, passable onset), as SPEC §3 does.
+        if let Some((ViolationKind::Arrival | ViolationKind::Interior, b)) = worst {
+            let force = all.iter().find(|c| {
+                matches!(c.kind, ViolationKind::Pass | ViolationKind::StickOnset)
+                    && c.boundary == b
+                    && (c.margin - margin).abs() <= 1e-8 * margin.abs().max(1.0)
+            });
+            if let Some(c) = force {
                 worst = Some((c.kind, c.boundary));
             }
         }
@@ -322,7 +337,7 @@ impl<M: Model> Continuer<'_, M> {
                 Some(bd) if bd.tests.value(which).abs() < good.tests.value(which).abs() => bd,
                 _ => good,
             };
-            if at.margin > 0.0 {
+            if at.margin > 0.0 && detect::is_critical(kind, &at.point.stability) {
                 found.push((at, kind));
             }
         }

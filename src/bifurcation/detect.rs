@@ -114,6 +114,25 @@ pub(crate) fn eigenvalue_jump(a: &Stability, b: &Stability) -> f64 {
 }
 
 /// The critical eigenvalue of a bifurcation of kind `kind` (`im >= 0`).
+/// How far the critical eigenvalue of a located bifurcation may lie from
+/// the unit circle's critical point: a test function that changes sign
+/// through a pole rather than a zero (the eigenvalues of `DP` jump or blow up
+/// at a non-smooth transition: the arrival becomes tangential and `DP` is
+/// singular) locates no bifurcation.
+pub(crate) const CRITICAL_TOL: f64 = 1e-6;
+
+/// Whether the located point's critical eigenvalue is on the unit circle
+/// where `kind` says (within [`CRITICAL_TOL`]).
+pub(crate) fn is_critical(kind: TransitionKind, s: &Stability) -> bool {
+    let e = critical(kind, s);
+    let miss = match kind {
+        TransitionKind::PeriodDoubling => (e[0] + 1.0).hypot(e[1]),
+        TransitionKind::NeimarkSacker => (e[0].hypot(e[1]) - 1.0).abs(),
+        _ => (e[0] - 1.0).hypot(e[1]),
+    };
+    miss <= CRITICAL_TOL
+}
+
 pub(crate) fn critical(kind: TransitionKind, s: &Stability) -> [f64; 2] {
     let target = match kind {
         TransitionKind::PeriodDoubling => -1.0,
