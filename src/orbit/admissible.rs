@@ -189,10 +189,27 @@ impl<M: Model> SampledSearch<'_, M> {
         }
     }
 
+    /// The sign of the sampled acceleration at sample `i` (`true`:
+    /// positive), from the closed form `flow` where it is clear of zero.
+    fn positive(&self, flow: Option<&SegmentFlow>, i: usize) -> bool {
+        let phi = if i == 0 {
+            self.seg.phase
+        } else {
+            self.seg.phase + self.h * i as f64
+        };
+        if let Some(s) = flow.map(|f| f.at(phi)) {
+            // Far above the rounding of either computation of `a`.
+            if s.a.abs() > 1e-9 * flow.map_or(0.0, |f| f.acceleration_scale(&s)) {
+                return s.a > 0.0;
+            }
+        }
+        self.sample(i) > 0.0
+    }
+
     /// Where the sampled search puts the extremum at `t`, found in sample
     /// interval `i` (or a neighbour, if `t` is within rounding of a sample):
     /// `None` if no sign change of the sampled acceleration brackets it.
-    fn extremum(&self, t: f64, i: usize) -> Option<f64> {
+    fn extremum(&self, flow: Option<&SegmentFlow>, t: f64, i: usize) -> Option<f64> {
         for i in [i, i - 1, i + 1] {
             if i == 0 || i > SAMPLES {
                 continue;
@@ -201,7 +218,9 @@ impl<M: Model> SampledSearch<'_, M> {
             if !(t >= phi - 2.0 * self.h && t <= phi + self.h) {
                 continue;
             }
-            let (prev, a) = (self.sample(i - 1), self.sample(i));
+            let (prev, a) = (self.positive(flow, i - 1), self.positive(flow, i));
+            let prev = if prev { 1.0 } else { -1.0 };
+            let a = if a { 1.0 } else { -1.0 };
             if (a > 0.0) != (prev > 0.0) {
                 return Some(self.refine(phi, prev));
             }
@@ -255,6 +274,7 @@ impl<M: Model> SampledSearch<'_, M> {
 /// interval) is taken where the closed form puts it.
 struct InteriorMargin<'a, M: Model> {
     sampled: SampledSearch<'a, M>,
+    flow: Option<SegmentFlow>,
     touched: [usize; 2],
     best: Option<(f64, usize)>,
     /// The last extremum seen, its sample interval, and whether another
@@ -269,8 +289,10 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         end: f64,
         touched: [usize; 2],
         j: usize,
+        flow: Option<SegmentFlow>,
     ) -> Self {
         Self {
+            flow,
             sampled: SampledSearch {
                 sim,
                 seg,
@@ -305,7 +327,7 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         let at = if crowded {
             None
         } else {
-            self.sampled.extremum(t, i)
+            self.sampled.extremum(self.flow.as_ref(), t, i)
         };
         let v = self
             .sampled
@@ -392,7 +414,7 @@ fn check_flow<M: Model>(
     // Closer than this to a boundary, the event search decides.
     let near = (100.0 * sim.options().graze_tol).max(1e-9 * vscale);
     let mut clear = true;
-    let mut margin = InteriorMargin::new(sim, seg, b, [from, to], j);
+    let mut margin = InteriorMargin::new(sim, seg, b, [from, to], j, Some(*flow));
     flow.acceleration_zeros(seg.phase, b + tol, |t, s| {
         if t > b {
             clear = false;

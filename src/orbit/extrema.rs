@@ -115,6 +115,12 @@ impl SegmentFlow {
         FlowState { x, v, a, da }
     }
 
+    /// The size of the terms that make up the acceleration at `s` (what
+    /// its rounding is relative to).
+    pub fn acceleration_scale(&self, s: &FlowState) -> f64 {
+        self.a0.abs() + self.b.abs() + (self.c * s.x).abs() + (self.two_d * s.v).abs()
+    }
+
     /// Every zero of the acceleration on `[lo, hi]` (phases), in increasing
     /// order, each passed to `on_zero` with its phase (refined to rounding)
     /// and the state there. Returns the number of evaluations made.
@@ -129,6 +135,7 @@ impl SegmentFlow {
         let mut stack = [(0.0f64, 0.0f64, 0u32); MAX_DEPTH as usize + 2];
         let mut top = 1usize;
         stack[0] = (lo, hi, 0);
+        let mut cached: Option<(f64, FlowState)> = None;
         while top > 0 {
             top -= 1;
             let (p0, p1, depth) = stack[top];
@@ -142,10 +149,23 @@ impl SegmentFlow {
                 continue;
             }
             let snap = self.two_d.abs() * j + self.c.abs() * (m.a.abs() + j * r) + self.forcing;
+            // Taylor with the bound on `a''`: `|a − a_m − a'_m s| ≤ snap s²/2`.
+            if m.a.abs() > m.da.abs() * r + 0.5 * snap * r * r {
+                continue;
+            }
             let monotone = m.da.abs() > snap * r;
             if monotone || depth >= MAX_DEPTH || !(j.is_finite() && snap.is_finite()) {
-                let (s0, s1) = (self.at(p0), self.at(p1));
-                evals += 2;
+                // The right end of the piece looked at last is often this one's left end.
+                let s0 = match cached {
+                    Some((phi, s)) if phi == p0 => s,
+                    _ => {
+                        evals += 1;
+                        self.at(p0)
+                    }
+                };
+                let s1 = self.at(p1);
+                evals += 1;
+                cached = Some((p1, s1));
                 if (s0.a > 0.0) != (s1.a > 0.0) {
                     let (phi, st, n) = self.refine(p0, p1, s0.a, m, mid);
                     evals += n;
