@@ -276,6 +276,16 @@ impl<M: Model> Simulator<M> {
         self.osc
     }
 
+    /// Effective coefficients of domain `j` (computed once, at construction).
+    pub fn coefficients(&self, j: usize) -> Coefficients {
+        self.coefficients[j]
+    }
+
+    /// The simulation's tolerances.
+    pub fn options(&self) -> SimOptions {
+        self.opts
+    }
+
     /// Velocity of boundary `k`.
     pub fn velocity(&self, k: usize) -> f64 {
         self.velocities[k]

@@ -3,11 +3,18 @@
 //! satisfied), and every violated one is reported with its segment, so that
 //! a sweep knows why a motion stops existing and can locate where the margin
 //! crosses zero.
+//!
+//! Along a flow segment the velocity's extrema come from the closed form
+//! ([`crate::orbit::extrema`]): a segment whose acceleration provably keeps
+//! its sign costs one evaluation, and the event search of the simulation is
+//! run only where a margin is too small for the closed form to decide alone.
+//! The text of a condition is written only when it is violated.
 
 use serde::Serialize;
 
-use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator};
+use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
 use crate::model::{MappingKind, Model, Side};
+use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::structure::Structure;
 
@@ -39,7 +46,8 @@ pub enum ViolationKind {
 pub struct Violation {
     /// Index of the mapping (in application order) where it happens.
     pub segment: usize,
-    /// What is violated, in the model's terms.
+    /// What is violated, in the model's terms. Written only for a violated
+    /// condition (margin `<= 0` or NaN); empty for a satisfied one.
     pub condition: String,
     /// By how much (negative or zero: violated; units of the quantity compared).
     pub margin: f64,
@@ -51,31 +59,257 @@ pub struct Violation {
     pub boundary: Option<usize>,
 }
 
+/// The smallest margin of a point's conditions (see [`worst_margin`]): no text.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Margin {
+    /// The margin (NaN: the condition could not be evaluated, counted as violated).
+    pub margin: f64,
+    /// Which kind of condition.
+    pub kind: ViolationKind,
+    /// Index of the mapping (in application order).
+    pub segment: usize,
+    /// The boundary involved, if any (index).
+    pub boundary: Option<usize>,
+}
+
+/// Where the conditions go: a list with text for the violated ones, or the
+/// smallest margin alone.
+trait Sink {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        text: impl FnOnce() -> String,
+    );
+}
+
+impl Sink for Vec<Violation> {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        text: impl FnOnce() -> String,
+    ) {
+        let violated = margin.is_nan() || margin <= 0.0;
+        self.push(Violation {
+            segment,
+            condition: if violated { text() } else { String::new() },
+            margin,
+            kind,
+            boundary,
+        });
+    }
+}
+
+/// The violated conditions only.
+struct Violated(Vec<Violation>);
+
+impl Sink for Violated {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        text: impl FnOnce() -> String,
+    ) {
+        if margin.is_nan() || margin <= 0.0 {
+            self.0.add(segment, kind, boundary, margin, text);
+        }
+    }
+}
+
+impl Sink for Option<Margin> {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        _text: impl FnOnce() -> String,
+    ) {
+        // NaN counts as the smallest (an unevaluable condition is violated).
+        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+        if self.is_none_or(|w| key(margin) < key(w.margin)) {
+            *self = Some(Margin {
+                margin,
+                kind,
+                segment,
+                boundary,
+            });
+        }
+    }
+}
+
 /// Tolerance on phases when comparing a simulated event with a switching point.
 fn phase_tol(phase: f64) -> f64 {
     1e-7 * phase.abs().max(1.0)
 }
 
-/// The smallest signed distance, over the open segment, from the velocity of
-/// the flow in domain `j` to the domain's boundaries (positive: strictly
-/// inside): for a boundary the segment starts or ends on, only interior
-/// extrema of `v` count (where the acceleration changes sign, refined by
-/// bisection); for any other boundary, every sample and extremum.
-fn interior_margin<M: Model>(
-    sim: &Simulator<M>,
-    seg: &Segment,
-    end: f64,
-    touched: [usize; 2],
+/// Samples per segment of the sampled search for velocity extrema whose
+/// values the margins reproduce (see [`InteriorMargin`]).
+const SAMPLES: usize = 24;
+
+/// The sampled search for the extrema of `v` on a segment that the margins
+/// were first computed with: samples `seg.phase + i h`, `i = 0..=24`, of
+/// the acceleration from the generated flow and vector field, each sign
+/// change refined by safeguarded Newton.
+struct SampledSearch<'a, M: Model> {
+    sim: &'a Simulator<M>,
+    seg: &'a Segment,
     j: usize,
-) -> Option<(f64, usize)> {
-    let dom = M::INFO.domains[j];
-    let p = sim.params();
-    let n = 24;
-    let h = (end - seg.phase) / n as f64;
-    let mut best: Option<(f64, usize)> = None;
-    let mut consider = |v: f64, extremum: bool| {
+    h: f64,
+}
+
+impl<M: Model> SampledSearch<'_, M> {
+    fn accel(&self, phi: f64) -> [f64; 2] {
+        let (x, v) = self.sim.state_at(self.seg, phi);
+        M::normal_field(self.sim.params(), self.j, x, v, phi)
+    }
+
+    fn sample(&self, i: usize) -> f64 {
+        if i == 0 {
+            self.accel(self.seg.phase)[0]
+        } else {
+            self.accel(self.seg.phase + self.h * i as f64)[0]
+        }
+    }
+
+    /// The sample interval `(seg.phase + (i − 1) h, seg.phase + i h]` of `t`.
+    fn interval(&self, t: f64) -> usize {
+        let i = ((t - self.seg.phase) / self.h).ceil();
+        if i >= 1.0 {
+            (i as usize).min(SAMPLES)
+        } else {
+            1
+        }
+    }
+
+    /// The sign of the sampled acceleration at sample `i` (`true`:
+    /// positive), from the closed form `flow` where it is clear of zero.
+    fn positive(&self, flow: Option<&SegmentFlow>, i: usize) -> bool {
+        let phi = if i == 0 {
+            self.seg.phase
+        } else {
+            self.seg.phase + self.h * i as f64
+        };
+        if let Some(s) = flow.map(|f| f.at(phi)) {
+            // Far above the rounding of either computation of `a`.
+            if s.a.abs() > 1e-9 * flow.map_or(0.0, |f| f.acceleration_scale(&s)) {
+                return s.a > 0.0;
+            }
+        }
+        self.sample(i) > 0.0
+    }
+
+    /// Where the sampled search puts the extremum at `t`, found in sample
+    /// interval `i` (or a neighbour, if `t` is within rounding of a sample):
+    /// `None` if no sign change of the sampled acceleration brackets it.
+    fn extremum(&self, flow: Option<&SegmentFlow>, t: f64, i: usize) -> Option<f64> {
+        for i in [i, i - 1, i + 1] {
+            if i == 0 || i > SAMPLES {
+                continue;
+            }
+            let phi = self.seg.phase + self.h * i as f64;
+            if !(t >= phi - 2.0 * self.h && t <= phi + self.h) {
+                continue;
+            }
+            let (prev, a) = (self.positive(flow, i - 1), self.positive(flow, i));
+            let prev = if prev { 1.0 } else { -1.0 };
+            let a = if a { 1.0 } else { -1.0 };
+            if (a > 0.0) != (prev > 0.0) {
+                return Some(self.refine(phi, prev));
+            }
+        }
+        None
+    }
+
+    /// Safeguarded Newton on the acceleration in `[phi − h, phi]` (its rate
+    /// in phase is `DF / W`), from the middle.
+    fn refine(&self, phi: f64, prev: f64) -> f64 {
+        let w = self.sim.oscillator().frequency;
+        let (mut lo, mut hi) = (phi - self.h, phi);
+        let mut t = 0.5 * (lo + hi);
+        for _ in 0..50 {
+            let [at, rate] = self.accel(t);
+            if (at > 0.0) == (prev > 0.0) {
+                lo = t;
+            } else {
+                hi = t;
+            }
+            let newton = t - at * w / rate;
+            let next = if rate != 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0) {
+                t = next;
+                break;
+            }
+            t = next;
+        }
+        t
+    }
+}
+
+/// The smallest signed distance, over the open segment `(seg.phase, end)`,
+/// from the velocity of the flow in domain `j` to the domain's boundaries
+/// (positive: strictly inside), with the boundary where it is smallest: for
+/// a boundary the segment starts or ends on (`touched`), over the interior
+/// extrema of `v`; for any other boundary, over the whole segment (its
+/// infimum: the extrema and the ends). `None` when no extremum and no other
+/// boundary count.
+///
+/// The extrema are the zeros of the acceleration, all of them, passed in
+/// increasing order to [`InteriorMargin::extremum`]. Each one's value is
+/// taken where the sampled search ([`SampledSearch`]) puts it when that
+/// search finds it alone in its sample interval, so that the margins are
+/// those of that search to the last bit (the located transitions of a
+/// sweep depend on them); an extremum it would miss (two in one sample
+/// interval) is taken where the closed form puts it.
+struct InteriorMargin<'a, M: Model> {
+    sampled: SampledSearch<'a, M>,
+    flow: Option<SegmentFlow>,
+    touched: [usize; 2],
+    best: Option<(f64, usize)>,
+    /// The last extremum seen, its sample interval, and whether another
+    /// extremum shares that interval.
+    pending: Option<(f64, usize, bool)>,
+}
+
+impl<'a, M: Model> InteriorMargin<'a, M> {
+    fn new(
+        sim: &'a Simulator<M>,
+        seg: &'a Segment,
+        end: f64,
+        touched: [usize; 2],
+        j: usize,
+        flow: Option<SegmentFlow>,
+    ) -> Self {
+        Self {
+            flow,
+            sampled: SampledSearch {
+                sim,
+                seg,
+                j,
+                h: (end - seg.phase) / SAMPLES as f64,
+            },
+            touched,
+            best: None,
+            pending: None,
+        }
+    }
+
+    fn consider(&mut self, v: f64, extremum: bool) {
+        let sim = self.sampled.sim;
+        let dom = M::INFO.domains[self.sampled.j];
         for k in [dom.lower, dom.upper].into_iter().flatten() {
-            if !extremum && touched.contains(&k) {
+            if !extremum && self.touched.contains(&k) {
                 continue;
             }
             let margin = if Some(k) == dom.lower {
@@ -83,66 +317,171 @@ fn interior_margin<M: Model>(
             } else {
                 sim.velocity(k) - v
             };
-            if best.is_none_or(|(m, _)| margin < m) {
-                best = Some((margin, k));
+            if self.best.is_none_or(|(m, _)| margin < m) {
+                self.best = Some((margin, k));
             }
         }
-    };
-    let accel = |phi: f64| {
-        let (x, v) = sim.state_at(seg, phi);
-        M::normal_field(p, j, x, v, phi)
-    };
-    let w = sim.oscillator().frequency;
-    let mut prev = accel(seg.phase)[0];
-    for i in 1..=n {
-        let phi = seg.phase + h * i as f64;
-        let a = accel(phi)[0];
-        if (a > 0.0) != (prev > 0.0) {
-            // An extremum of v: safeguarded Newton on the acceleration
-            // (its rate in phase is DF / W).
-            let (mut lo, mut hi) = (phi - h, phi);
-            let mut t = 0.5 * (lo + hi);
-            for _ in 0..50 {
-                let [at, rate] = accel(t);
-                if (at > 0.0) == (prev > 0.0) {
-                    lo = t;
-                } else {
-                    hi = t;
-                }
-                let newton = t - at * w / rate;
-                let next = if rate != 0.0 && newton > lo && newton < hi {
-                    newton
-                } else {
-                    0.5 * (lo + hi)
-                };
-                if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0) {
-                    t = next;
-                    break;
-                }
-                t = next;
-            }
-            consider(sim.state_at(seg, t).1, true);
-        }
-        if i < n {
-            consider(sim.state_at(seg, phi).1, false);
-        }
-        prev = a;
     }
-    best
+
+    fn settle(&mut self, (t, i, crowded): (f64, usize, bool)) {
+        let at = if crowded {
+            None
+        } else {
+            self.sampled.extremum(self.flow.as_ref(), t, i)
+        };
+        let v = self
+            .sampled
+            .sim
+            .state_at(self.sampled.seg, at.unwrap_or(t))
+            .1;
+        self.consider(v, true);
+    }
+
+    /// The next extremum of `v` (a zero of the acceleration) at phase `t`.
+    fn extremum(&mut self, t: f64) {
+        let i = self.sampled.interval(t);
+        self.pending = match self.pending.take() {
+            Some((u, iu, _)) if iu == i => {
+                self.settle((u, iu, true));
+                Some((t, i, true))
+            }
+            Some(z) => {
+                self.settle(z);
+                Some((t, i, false))
+            }
+            None => Some((t, i, false)),
+        };
+    }
+
+    /// The margin, given the velocity at the segment's end.
+    fn finish(mut self, end_v: f64) -> Option<(f64, usize)> {
+        if let Some(z) = self.pending.take() {
+            self.settle(z);
+        }
+        // The ends, for the boundaries not touched.
+        self.consider(self.sampled.seg.v, false);
+        self.consider(end_v, false);
+        self.best
+    }
+}
+
+/// How the first boundary contact of a flow segment compares with its arrival.
+enum Outcome {
+    /// On the mapping's target, at its end (within the phase tolerance).
+    Arrives,
+    /// Elsewhere or earlier.
+    Early(crate::dynamics::simulate::Event),
+    /// Not before the end.
+    Missing,
+    /// The event search failed.
+    Failed(crate::dynamics::simulate::SimError),
+}
+
+/// What the closed form says about one flow segment.
+struct FlowCheck {
+    /// The interior margin ([`InteriorMargin`]).
+    interior: Option<(f64, usize)>,
+    /// Whether the first boundary contact is, for certain, the arrival on
+    /// the mapping's target within the phase tolerance (where the event
+    /// search would find it): every margin is clear of zero.
+    arrives: bool,
+}
+
+/// The interior margin of the flow of `seg` (domain `j`) to phase `b` on
+/// boundary `to`, and whether its arrival is certain (`dep`: the
+/// departure's acceleration into the domain).
+fn check_flow<M: Model>(
+    sim: &Simulator<M>,
+    flow: &SegmentFlow,
+    seg: &Segment,
+    j: usize,
+    [from, to]: [usize; 2],
+    b: f64,
+    dep: f64,
+) -> FlowCheck {
+    let dom = M::INFO.domains[j];
+    let co = sim.coefficients(j);
+    let osc = sim.oscillator();
+    let w = osc.frequency;
+    let tol = phase_tol(b);
+    let lo = dom.lower.map(|k| sim.velocity(k));
+    let hi = dom.upper.map(|k| sim.velocity(k));
+    let vscale = lo
+        .unwrap_or(0.0)
+        .abs()
+        .max(hi.unwrap_or(0.0).abs())
+        .max(seg.v.abs());
+    // Closer than this to a boundary, the event search decides.
+    let near = (100.0 * sim.options().graze_tol).max(1e-9 * vscale);
+    let mut clear = true;
+    let mut margin = InteriorMargin::new(sim, seg, b, [from, to], j, Some(*flow));
+    flow.acceleration_zeros(seg.phase, b + tol, |t, s| {
+        if t > b {
+            clear = false;
+            return;
+        }
+        margin.extremum(t);
+        clear &= lo.is_none_or(|l| s.v - l > near) && hi.is_none_or(|h| h - s.v > near);
+    });
+    let e = flow.at(b);
+    let interior = margin.finish(e.v);
+    let vb = sim.velocity(to);
+    let out = if dom.upper == Some(to) { 1.0 } else { -1.0 };
+    let ascale = osc.amplitude.abs()
+        + co.b.abs()
+        + (co.c * e.x).abs()
+        + (co.two_d * e.v).abs()
+        + (co.c * seg.x).abs();
+    // The event search's own limit on stiff domains.
+    let step =
+        std::f64::consts::FRAC_PI_4.min(w * 0.5 / (co.c.abs().sqrt() + 0.5 * co.two_d.abs()));
+    let steps = std::f64::consts::TAU / step;
+    let arrives = clear
+        && steps <= MAX_STEPS_PER_PERIOD
+        && dep > 1e-9 * ascale
+        && out * e.a > 1e-9 * ascale
+        && (e.v - vb).abs() * w <= 1e-3 * tol * e.a.abs()
+        && [e.x, e.v, e.a].iter().all(|v| v.is_finite());
+    FlowCheck { interior, arrives }
 }
 
 /// Every condition of SPEC §6 for `points` of `structure`, with its margin;
 /// the violated ones are those with margin `<= 0` (see [`violations`]).
+/// Only the violated ones carry their text ([`Violation::condition`]).
 pub fn conditions<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Vec<Violation> {
+    let mut out = Vec::with_capacity(6 * points.len());
+    walk(sim, structure, points, &mut out);
+    out
+}
+
+/// The smallest margin of every condition of [`conditions`] (NaN counts as
+/// the smallest), with its kind, segment and boundary; `None` for no points.
+/// Writes no text and allocates nothing: for a continuation that watches
+/// the margins point by point.
+pub fn worst_margin<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+) -> Option<Margin> {
+    let mut worst = None;
+    walk(sim, structure, points, &mut worst);
+    worst
+}
+
+fn walk<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    out: &mut impl Sink,
+) {
     let info = M::INFO;
     let p = sim.params();
     let m = points.len();
     let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
-    let mut out = Vec::new();
     let label = |k: usize| info.boundaries[k].label;
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
@@ -157,25 +496,17 @@ pub fn conditions<M: Model>(
             }
         };
         let mut add =
-            |kind: ViolationKind, boundary: Option<usize>, condition: String, margin: f64| {
-                out.push(Violation {
-                    segment: k,
-                    condition,
-                    margin,
-                    kind,
-                    boundary,
-                })
-            };
+            |kind: ViolationKind,
+             boundary: Option<usize>,
+             margin: f64,
+             text: &dyn Fn() -> String| { out.add(k, kind, boundary, margin, text) };
         let duration = b.phase - a.phase;
-        add(
-            ViolationKind::Duration,
-            None,
+        add(ViolationKind::Duration, None, duration, &|| {
             format!(
                 "mapping {} must take positive time (W t from {} to {})",
                 mi.name, a.phase, b.phase
-            ),
-            duration,
-        );
+            )
+        });
         if duration.is_nan() || duration <= 0.0 {
             continue;
         }
@@ -183,15 +514,12 @@ pub fn conditions<M: Model>(
         // another mapping takes negative time; the event search over the
         // whole span (Newton may put it anywhere) would be unbounded work.
         if duration > shift + phase_tol(b.phase) {
-            add(
-                ViolationKind::Duration,
-                None,
+            add(ViolationKind::Duration, None, shift - duration, &|| {
                 format!(
                     "mapping {} must take less than the whole cycle (W t from {} to {})",
                     mi.name, a.phase, b.phase
-                ),
-                shift - duration,
-            );
+                )
+            });
             continue;
         }
         match (mi.kind, mi.domain) {
@@ -204,50 +532,54 @@ pub fn conditions<M: Model>(
                     location: Location::Stick,
                     search_from: a.phase,
                 };
-                let (margin, what) = match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
+                let event = sim.next_event(&seg, b.phase + phase_tol(b.phase));
+                let (margin, exit_ok) = match &event {
                     Ok(Some((e, _))) if e.kind == EventKind::StickEnd => {
                         let exit_ok = match (e.after, mi.exit) {
                             (Location::Domain(j), Some(Side::Above)) => j == mi.from + 1,
                             (Location::Domain(j), Some(Side::Below)) => j == mi.from,
                             _ => false,
                         };
-                        if !exit_ok {
-                            (
-                                -(b.phase - e.phase).abs().max(f64::MIN_POSITIVE),
+                        if exit_ok {
+                            (e.phase - b.phase + phase_tol(b.phase), true)
+                        } else {
+                            (-(b.phase - e.phase).abs().max(f64::MIN_POSITIVE), false)
+                        }
+                    }
+                    Ok(_) => (0.0, true),
+                    Err(_) => (f64::NAN, true),
+                };
+                add(
+                    ViolationKind::StickEnd,
+                    Some(mi.from),
+                    margin,
+                    &|| match &event {
+                        Ok(Some((e, _))) if e.kind == EventKind::StickEnd => {
+                            if !exit_ok {
                                 format!(
                                     "the stick on {} ends to the other side at W t = {}",
                                     label(mi.from),
                                     e.phase
-                                ),
-                            )
-                        } else {
-                            (
-                                e.phase - b.phase + phase_tol(b.phase),
+                                )
+                            } else {
                                 format!(
                                     "the stick on {} must last until W t = {} (|Fnf| < as)",
                                     label(mi.from),
                                     b.phase
-                                ),
-                            )
+                                )
+                            }
                         }
-                    }
-                    Ok(Some((e, _))) => (
-                        0.0,
-                        format!(
+                        Ok(Some((e, _))) => format!(
                             "unexpected {:?} during the stick at W t = {}",
                             e.kind, e.phase
                         ),
-                    ),
-                    Ok(None) => (
-                        0.0,
-                        format!(
+                        Ok(None) => format!(
                             "|Fnf| < as until W t = {}: the stick does not end there",
                             b.phase
                         ),
-                    ),
-                    Err(e) => (f64::NAN, format!("simulation failed: {e}")),
-                };
-                add(ViolationKind::StickEnd, Some(mi.from), what, margin);
+                        Err(e) => format!("simulation failed: {e}"),
+                    },
+                );
             }
             (_, Some(j)) => {
                 let dom = info.domains[j];
@@ -265,17 +597,13 @@ pub fn conditions<M: Model>(
                 } else {
                     into * acc0
                 };
-                add(
-                    ViolationKind::Departure,
-                    Some(mi.from),
+                add(ViolationKind::Departure, Some(mi.from), dep, &|| {
                     format!(
                         "the flow must leave {} into domain {}",
                         label(mi.from),
                         dom.label
-                    ),
-                    dep,
-                );
-                // The arrival on β is the first boundary contact.
+                    )
+                });
                 let seg = Segment {
                     x: a.x,
                     v: va,
@@ -283,66 +611,80 @@ pub fn conditions<M: Model>(
                     location: Location::Domain(j),
                     search_from: a.phase,
                 };
-                match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
-                    Ok(Some((e, _)))
-                        if e.phase < b.phase - phase_tol(b.phase) || e.boundary != mi.to =>
-                    {
+                let check =
+                    SegmentFlow::new(sim.oscillator(), sim.coefficients(j), a.x, va, a.phase).map(
+                        |f| check_flow(sim, &f, &seg, j, [mi.from, mi.to], b.phase, into * acc0),
+                    );
+                // A flow the closed form cannot follow has no margin.
+                let interior = || match &check {
+                    Some(c) => c.interior,
+                    None => Some((f64::NAN, mi.to)),
+                };
+                // The arrival on β is the first boundary contact: certain from
+                // the closed form when every margin is clear of zero, else
+                // the event search decides.
+                let event = match &check {
+                    Some(c) if c.arrives => None,
+                    _ => Some(sim.next_event(&seg, b.phase + phase_tol(b.phase))),
+                };
+                let tol = phase_tol(b.phase);
+                let outcome = match event {
+                    None => Outcome::Arrives,
+                    Some(Ok(Some((e, _)))) if e.phase < b.phase - tol || e.boundary != mi.to => {
+                        Outcome::Early(e)
+                    }
+                    Some(Ok(Some(_))) => Outcome::Arrives,
+                    Some(Ok(None)) => Outcome::Missing,
+                    Some(Err(e)) => Outcome::Failed(e),
+                };
+                match outcome {
+                    Outcome::Arrives => {
+                        if let Some((margin, kb)) = interior() {
+                            add(ViolationKind::Interior, Some(kb), margin, &|| {
+                                format!(
+                                    "the flow of {} must stay off {} before its arrival",
+                                    mi.name,
+                                    label(kb)
+                                )
+                            });
+                        }
+                    }
+                    Outcome::Early(e) => {
                         let what = if e.kind == EventKind::Graze {
                             "grazes"
                         } else {
                             "crosses"
                         };
-                        let depth = interior_margin(sim, &seg, b.phase, [mi.from, mi.to], j)
-                            .map_or(0.0, |(m, _)| m.min(0.0));
-                        add(
-                            ViolationKind::Interior,
-                            Some(e.boundary),
+                        let depth = interior().map_or(0.0, |(m, _)| m.min(0.0));
+                        add(ViolationKind::Interior, Some(e.boundary), depth, &|| {
                             format!(
                                 "the flow of {} {what} {} at W t = {} before reaching {}",
                                 mi.name,
                                 label(e.boundary),
                                 e.phase,
                                 label(mi.to)
-                            ),
-                            depth,
-                        );
+                            )
+                        });
                     }
-                    Ok(Some(_)) => {
-                        if let Some((margin, kb)) =
-                            interior_margin(sim, &seg, b.phase, [mi.from, mi.to], j)
-                        {
-                            add(
-                                ViolationKind::Interior,
-                                Some(kb),
-                                format!(
-                                    "the flow of {} must stay off {} before its arrival",
-                                    mi.name,
-                                    label(kb)
-                                ),
-                                margin,
-                            );
-                        }
-                    }
-                    Ok(None) => {
+                    Outcome::Missing => {
                         let (_, v) = sim.state_at(&seg, b.phase);
                         add(
                             ViolationKind::Arrival,
                             Some(mi.to),
-                            format!(
-                                "the flow of {} does not reach {} by W t = {}",
-                                mi.name,
-                                label(mi.to),
-                                b.phase
-                            ),
                             -(v - vb).abs(),
+                            &|| {
+                                format!(
+                                    "the flow of {} does not reach {} by W t = {}",
+                                    mi.name,
+                                    label(mi.to),
+                                    b.phase
+                                )
+                            },
                         );
                     }
-                    Err(e) => add(
-                        ViolationKind::Other,
-                        None,
-                        format!("simulation failed: {e}"),
-                        f64::NAN,
-                    ),
+                    Outcome::Failed(e) => add(ViolationKind::Other, None, f64::NAN, &|| {
+                        format!("simulation failed: {e}")
+                    }),
                 }
                 // Transversal arrival.
                 let acc1 = M::normal_field(p, j, b.x, vb, b.phase)[0];
@@ -350,23 +692,20 @@ pub fn conditions<M: Model>(
                 add(
                     ViolationKind::Arrival,
                     Some(mi.to),
-                    format!("the arrival on {} must be transversal", label(mi.to)),
                     out_sign * acc1,
+                    &|| format!("the arrival on {} must be transversal", label(mi.to)),
                 );
                 // What happens at β.
                 if next_mi.kind != MappingKind::Stick && next_mi.domain == Some(j) {
-                    add(
-                        ViolationKind::Other,
-                        Some(mi.to),
+                    add(ViolationKind::Other, Some(mi.to), -(acc1.abs()), &|| {
                         format!(
                             "{} arrives on {} from domain {} and {} leaves into the same domain",
                             mi.name,
                             label(mi.to),
                             dom.label,
                             next_mi.name
-                        ),
-                        -(acc1.abs()),
-                    );
+                        )
+                    });
                 }
                 if let (Some(f), true) = (
                     M::stick_forces(p, b.x, b.phase),
@@ -378,8 +717,10 @@ pub fn conditions<M: Model>(
                         add(
                             ViolationKind::StickOnset,
                             Some(mi.to),
-                            format!("stick onset on {} needs F_in above < 0 < F_in below (F_in above = {fa}, F_in below = {fb})", label(mi.to)),
                             (-fa).min(fb),
+                            &|| {
+                                format!("stick onset on {} needs F_in above < 0 < F_in below (F_in above = {fa}, F_in below = {fb})", label(mi.to))
+                            },
                         );
                     } else if next_mi.domain != Some(j) {
                         let margin = if from_above {
@@ -392,27 +733,20 @@ pub fn conditions<M: Model>(
                         } else {
                             "both input forces > 0"
                         };
-                        add(
-                            ViolationKind::Pass,
-                            Some(mi.to),
+                        add(ViolationKind::Pass, Some(mi.to), margin, &|| {
                             format!(
                                 "passing {} needs {need} (F_in above = {fa}, F_in below = {fb})",
                                 label(mi.to)
-                            ),
-                            margin,
-                        );
+                            )
+                        });
                     }
                 }
             }
-            (_, None) => add(
-                ViolationKind::Other,
-                None,
-                "a flow mapping without a domain".into(),
-                f64::NAN,
-            ),
+            (_, None) => add(ViolationKind::Other, None, f64::NAN, &|| {
+                "a flow mapping without a domain".into()
+            }),
         }
     }
-    out
 }
 
 /// The violated conditions of SPEC §6 for `points` of `structure` (empty for a real motion).
@@ -421,7 +755,7 @@ pub fn violations<M: Model>(
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Vec<Violation> {
-    let mut all = conditions(sim, structure, points);
-    all.retain(|c| c.margin.is_nan() || c.margin <= 0.0);
-    all
+    let mut violated = Violated(Vec::new());
+    walk(sim, structure, points, &mut violated);
+    violated.0
 }

@@ -4,6 +4,7 @@
 //! * [`periodic`] — Newton on the block-cyclic mapping system;
 //! * [`family`] — minimum-norm Newton onto a neutral family (DP has eigenvalue 1);
 //! * [`admissible`] — admissibility of a solved motion, with signed margins;
+//! * [`extrema`] — the velocity extrema of a flow segment, from the closed form;
 //! * [`stability`] — the monodromy matrix and its eigenvalues;
 //! * [`motion`] — a solved, checked periodic motion;
 //! * [`attractor`] — what a simulation settles on: a motion, a stick, a family;
@@ -13,6 +14,7 @@
 
 pub mod admissible;
 pub mod attractor;
+pub mod extrema;
 pub mod family;
 pub mod known;
 pub mod motion;

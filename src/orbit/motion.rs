@@ -134,6 +134,9 @@ pub fn solve_with<M: Model>(
     let mut solver = PeriodicSolver::<M>::new(structure);
     let guess = points.clone();
     let mut termination = solver.solve(sim.params(), &mut points, opts);
+    // Newton's last evaluations are at its solution: `DP` from them, while
+    // the points stay where Newton left them.
+    let mut evaluated = termination.converged();
     if !termination.converged() {
         // A neutral family: `I − DP` singular, Newton's step singular or
         // useless, yet solutions nearby. Kept only if `DP` has the eigenvalue 1.
@@ -160,9 +163,15 @@ pub fn solve_with<M: Model>(
         for pt in &mut points {
             pt.phase -= shift;
         }
+        evaluated = false;
     }
     let (dp, stability, violations) = if termination.converged() {
-        let dp = solver.poincare_jacobian(sim.params(), &points).ok();
+        let dp = if evaluated {
+            solver.poincare_jacobian_at_solution()
+        } else {
+            solver.poincare_jacobian(sim.params(), &points)
+        }
+        .ok();
         let st = dp.as_ref().map(Stability::of);
         let v = if check {
             violations(sim, solver.structure(), &points)

@@ -476,6 +476,22 @@ impl<M: Model> PeriodicSolver<M> {
         }
     }
 
+    /// `DP` at the points the last [`solve`](Self::solve) returned, from the
+    /// evaluations it made there (none made anew): the value
+    /// [`poincare_jacobian`](Self::poincare_jacobian) gives at those points,
+    /// to the bit. Valid only right after a `solve` that converged.
+    pub fn poincare_jacobian_at_solution(&self) -> Result<Matrix2<f64>, SingularStep> {
+        let mut dp = Matrix2::identity();
+        for (k, e) in self.evals.iter().enumerate() {
+            let local = e.local_jacobian().ok_or(SingularStep {
+                segment: Some(k),
+                reason: "the arrival is tangent to the boundary (grazing)",
+            })?;
+            dp = local * dp;
+        }
+        Ok(dp)
+    }
+
     /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` at `points`,
     /// ordered `(W t, x)` (SPEC §7, Eq. B.1), or why it does not exist.
     pub fn poincare_jacobian(

@@ -1,0 +1,636 @@
+//! The admissibility margins of `admissible::conditions` (velocity extrema
+//! from the closed form, the event search only near a zero margin, text
+//! only for violated conditions) against two independent computations, on
+//! many motions: the reference orbits, attractors of the paper model over
+//! W and Q0, the Coulomb oscillator, a 16-piece Stribeck law, the paper
+//! model with negative damping (stribeck8), each also perturbed at random
+//! so that conditions are violated.
+//!
+//! 1. `sampled`: the algorithm the fast one replaced, kept here verbatim
+//!    (24 samples of the acceleration per segment, every sign change refined
+//!    by Newton, the event search on every segment, every text written).
+//!    Every margin of a converged motion must equal it to the last bit
+//!    (what the sweep's located transitions depend on), and every
+//!    condition's kind, segment, boundary and violated text must match.
+//! 2. `dense`: the same with 2000 samples per segment and the ends of the
+//!    segment for the boundaries it does not touch (the infimum over the
+//!    open segment): every margin must match it to 1e-12 (relative to the
+//!    velocities involved), perturbed points included.
+//!
+//! And `worst_margin` is the smallest margin of `conditions`, with its kind,
+//! segment and boundary.
+
+mod common;
+
+use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
+use stickslip::model::{MappingKind, Model, Side};
+use stickslip::models::coulomb::{self, Coulomb};
+use stickslip::models::paper::{self, Paper};
+use stickslip::models::stribeck::pl16::{self, Pl16};
+use stickslip::models::stribeck8::{self, Stribeck8};
+use stickslip::orbit::admissible::{conditions, worst_margin, Violation, ViolationKind};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::motion::solve;
+use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
+
+fn phase_tol(phase: f64) -> f64 {
+    1e-7 * phase.abs().max(1.0)
+}
+
+/// The interior margin by sampling (`n` samples; `ends`: the segment's ends
+/// count for the boundaries it does not touch).
+fn sampled_interior_margin<M: Model>(
+    sim: &Simulator<M>,
+    seg: &Segment,
+    end: f64,
+    touched: [usize; 2],
+    j: usize,
+    n: usize,
+    ends: bool,
+) -> Option<(f64, usize)> {
+    let dom = M::INFO.domains[j];
+    let p = sim.params();
+    let h = (end - seg.phase) / n as f64;
+    let mut best: Option<(f64, usize)> = None;
+    let mut consider = |v: f64, extremum: bool| {
+        for k in [dom.lower, dom.upper].into_iter().flatten() {
+            if !extremum && touched.contains(&k) {
+                continue;
+            }
+            let margin = if Some(k) == dom.lower {
+                v - sim.velocity(k)
+            } else {
+                sim.velocity(k) - v
+            };
+            if best.is_none_or(|(m, _)| margin < m) {
+                best = Some((margin, k));
+            }
+        }
+    };
+    let accel = |phi: f64| {
+        let (x, v) = sim.state_at(seg, phi);
+        M::normal_field(p, j, x, v, phi)
+    };
+    let w = sim.oscillator().frequency;
+    let mut prev = accel(seg.phase)[0];
+    for i in 1..=n {
+        let phi = seg.phase + h * i as f64;
+        let a = accel(phi)[0];
+        if (a > 0.0) != (prev > 0.0) {
+            let (mut lo, mut hi) = (phi - h, phi);
+            let mut t = 0.5 * (lo + hi);
+            for _ in 0..50 {
+                let [at, rate] = accel(t);
+                if (at > 0.0) == (prev > 0.0) {
+                    lo = t;
+                } else {
+                    hi = t;
+                }
+                let newton = t - at * w / rate;
+                let next = if rate != 0.0 && newton > lo && newton < hi {
+                    newton
+                } else {
+                    0.5 * (lo + hi)
+                };
+                if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0) {
+                    t = next;
+                    break;
+                }
+                t = next;
+            }
+            consider(sim.state_at(seg, t).1, true);
+        }
+        if i < n {
+            consider(sim.state_at(seg, phi).1, false);
+        }
+        prev = a;
+    }
+    if ends {
+        consider(seg.v, false);
+        consider(sim.state_at(seg, end).1, false);
+    }
+    best
+}
+
+/// The conditions as computed before the closed-form extrema (verbatim but
+/// for the interior margin's `n` and `ends`).
+fn sampled_conditions<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    n: usize,
+    ends: bool,
+) -> Vec<Violation> {
+    let info = M::INFO;
+    let p = sim.params();
+    let m = points.len();
+    let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
+    let mut out = Vec::new();
+    let label = |k: usize| info.boundaries[k].label;
+    for k in 0..m {
+        let mi = info.mappings[structure.steps()[k]];
+        let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
+        let a = points[k];
+        let b = if k + 1 < m {
+            points[k + 1]
+        } else {
+            SwitchingPoint {
+                phase: points[0].phase + shift,
+                x: points[0].x,
+            }
+        };
+        let mut add =
+            |kind: ViolationKind, boundary: Option<usize>, condition: String, margin: f64| {
+                out.push(Violation {
+                    segment: k,
+                    condition,
+                    margin,
+                    kind,
+                    boundary,
+                })
+            };
+        let duration = b.phase - a.phase;
+        add(
+            ViolationKind::Duration,
+            None,
+            format!(
+                "mapping {} must take positive time (W t from {} to {})",
+                mi.name, a.phase, b.phase
+            ),
+            duration,
+        );
+        if duration.is_nan() || duration <= 0.0 {
+            continue;
+        }
+        if duration > shift + phase_tol(b.phase) {
+            add(
+                ViolationKind::Duration,
+                None,
+                format!(
+                    "mapping {} must take less than the whole cycle (W t from {} to {})",
+                    mi.name, a.phase, b.phase
+                ),
+                shift - duration,
+            );
+            continue;
+        }
+        match (mi.kind, mi.domain) {
+            (MappingKind::Stick, _) => {
+                let seg = Segment {
+                    x: a.x,
+                    v: sim.velocity(mi.from),
+                    phase: a.phase,
+                    location: Location::Stick,
+                    search_from: a.phase,
+                };
+                let (margin, what) = match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
+                    Ok(Some((e, _))) if e.kind == EventKind::StickEnd => {
+                        let exit_ok = match (e.after, mi.exit) {
+                            (Location::Domain(j), Some(Side::Above)) => j == mi.from + 1,
+                            (Location::Domain(j), Some(Side::Below)) => j == mi.from,
+                            _ => false,
+                        };
+                        if !exit_ok {
+                            (
+                                -(b.phase - e.phase).abs().max(f64::MIN_POSITIVE),
+                                format!(
+                                    "the stick on {} ends to the other side at W t = {}",
+                                    label(mi.from),
+                                    e.phase
+                                ),
+                            )
+                        } else {
+                            (
+                                e.phase - b.phase + phase_tol(b.phase),
+                                format!(
+                                    "the stick on {} must last until W t = {} (|Fnf| < as)",
+                                    label(mi.from),
+                                    b.phase
+                                ),
+                            )
+                        }
+                    }
+                    Ok(Some((e, _))) => (
+                        0.0,
+                        format!(
+                            "unexpected {:?} during the stick at W t = {}",
+                            e.kind, e.phase
+                        ),
+                    ),
+                    Ok(None) => (
+                        0.0,
+                        format!(
+                            "|Fnf| < as until W t = {}: the stick does not end there",
+                            b.phase
+                        ),
+                    ),
+                    Err(e) => (f64::NAN, format!("simulation failed: {e}")),
+                };
+                add(ViolationKind::StickEnd, Some(mi.from), what, margin);
+            }
+            (_, Some(j)) => {
+                let dom = info.domains[j];
+                let (va, vb) = (sim.velocity(mi.from), sim.velocity(mi.to));
+                let [acc0, rate0] = M::normal_field(p, j, a.x, va, a.phase);
+                let into = if dom.lower == Some(mi.from) {
+                    1.0
+                } else {
+                    -1.0
+                };
+                let dep = if into * acc0 == 0.0 {
+                    into * rate0
+                } else {
+                    into * acc0
+                };
+                add(
+                    ViolationKind::Departure,
+                    Some(mi.from),
+                    format!(
+                        "the flow must leave {} into domain {}",
+                        label(mi.from),
+                        dom.label
+                    ),
+                    dep,
+                );
+                let seg = Segment {
+                    x: a.x,
+                    v: va,
+                    phase: a.phase,
+                    location: Location::Domain(j),
+                    search_from: a.phase,
+                };
+                let interior =
+                    || sampled_interior_margin(sim, &seg, b.phase, [mi.from, mi.to], j, n, ends);
+                match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
+                    Ok(Some((e, _)))
+                        if e.phase < b.phase - phase_tol(b.phase) || e.boundary != mi.to =>
+                    {
+                        let what = if e.kind == EventKind::Graze {
+                            "grazes"
+                        } else {
+                            "crosses"
+                        };
+                        let depth = interior().map_or(0.0, |(m, _)| m.min(0.0));
+                        add(
+                            ViolationKind::Interior,
+                            Some(e.boundary),
+                            format!(
+                                "the flow of {} {what} {} at W t = {} before reaching {}",
+                                mi.name,
+                                label(e.boundary),
+                                e.phase,
+                                label(mi.to)
+                            ),
+                            depth,
+                        );
+                    }
+                    Ok(Some(_)) => {
+                        if let Some((margin, kb)) = interior() {
+                            add(
+                                ViolationKind::Interior,
+                                Some(kb),
+                                format!(
+                                    "the flow of {} must stay off {} before its arrival",
+                                    mi.name,
+                                    label(kb)
+                                ),
+                                margin,
+                            );
+                        }
+                    }
+                    Ok(None) => {
+                        let (_, v) = sim.state_at(&seg, b.phase);
+                        add(
+                            ViolationKind::Arrival,
+                            Some(mi.to),
+                            format!(
+                                "the flow of {} does not reach {} by W t = {}",
+                                mi.name,
+                                label(mi.to),
+                                b.phase
+                            ),
+                            -(v - vb).abs(),
+                        );
+                    }
+                    Err(e) => add(
+                        ViolationKind::Other,
+                        None,
+                        format!("simulation failed: {e}"),
+                        f64::NAN,
+                    ),
+                }
+                let acc1 = M::normal_field(p, j, b.x, vb, b.phase)[0];
+                let out_sign = if dom.upper == Some(mi.to) { 1.0 } else { -1.0 };
+                add(
+                    ViolationKind::Arrival,
+                    Some(mi.to),
+                    format!("the arrival on {} must be transversal", label(mi.to)),
+                    out_sign * acc1,
+                );
+                if next_mi.kind != MappingKind::Stick && next_mi.domain == Some(j) {
+                    add(
+                        ViolationKind::Other,
+                        Some(mi.to),
+                        format!(
+                            "{} arrives on {} from domain {} and {} leaves into the same domain",
+                            mi.name,
+                            label(mi.to),
+                            dom.label,
+                            next_mi.name
+                        ),
+                        -(acc1.abs()),
+                    );
+                }
+                if let (Some(f), true) = (
+                    M::stick_forces(p, b.x, b.phase),
+                    info.boundaries[mi.to].stick,
+                ) {
+                    let from_above = dom.lower == Some(mi.to);
+                    let (fa, fb) = (f.input_above, f.input_below);
+                    if next_mi.kind == MappingKind::Stick {
+                        add(
+                            ViolationKind::StickOnset,
+                            Some(mi.to),
+                            format!("stick onset on {} needs F_in above < 0 < F_in below (F_in above = {fa}, F_in below = {fb})", label(mi.to)),
+                            (-fa).min(fb),
+                        );
+                    } else if next_mi.domain != Some(j) {
+                        let margin = if from_above {
+                            (-fa).min(-fb)
+                        } else {
+                            fa.min(fb)
+                        };
+                        let need = if from_above {
+                            "both input forces < 0"
+                        } else {
+                            "both input forces > 0"
+                        };
+                        add(
+                            ViolationKind::Pass,
+                            Some(mi.to),
+                            format!(
+                                "passing {} needs {need} (F_in above = {fa}, F_in below = {fb})",
+                                label(mi.to)
+                            ),
+                            margin,
+                        );
+                    }
+                }
+            }
+            (_, None) => add(
+                ViolationKind::Other,
+                None,
+                "a flow mapping without a domain".into(),
+                f64::NAN,
+            ),
+        }
+    }
+    out
+}
+
+/// What the comparison saw.
+#[derive(Default, Debug)]
+struct Tally {
+    point_sets: usize,
+    conditions: usize,
+    violated: usize,
+    interior: usize,
+    bitwise_sampled: usize,
+    differs_from_sampled: Vec<String>,
+}
+
+fn same(a: f64, b: f64, tol: f64) -> bool {
+    (a.is_nan() && b.is_nan()) || a == b || (a - b).abs() <= tol
+}
+
+/// Compare the conditions at `points`; `solution`: the points solve the
+/// mapping equations (a converged motion), so the margins must equal the
+/// sampled ones to the bit.
+fn compare<M: Model>(
+    what: &str,
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    solution: bool,
+    tally: &mut Tally,
+) {
+    let fast = conditions(sim, structure, points);
+    let dense = sampled_conditions(sim, structure, points, 2000, true);
+    let sampled = sampled_conditions(sim, structure, points, 24, false);
+    tally.point_sets += 1;
+    assert_eq!(fast.len(), dense.len(), "{what}: {fast:#?}\n{dense:#?}");
+    let vscale = (0..M::INFO.boundaries.len())
+        .map(|k| sim.velocity(k).abs())
+        .fold(1.0f64, f64::max);
+    for (i, (f, d)) in fast.iter().zip(&dense).enumerate() {
+        let at = format!("{what}: condition {i}: {f:?} vs dense {d:?}");
+        assert_eq!(
+            (f.segment, f.kind, f.boundary),
+            (d.segment, d.kind, d.boundary),
+            "{at}"
+        );
+        let tol = 1e-12 * vscale.max(d.margin.abs());
+        assert!(same(f.margin, d.margin, tol), "{at}");
+        let violated = f.margin.is_nan() || f.margin <= 0.0;
+        if violated {
+            assert_eq!(f.condition, d.condition, "{at}");
+            tally.violated += 1;
+        } else {
+            assert!(f.condition.is_empty(), "{at}");
+        }
+        tally.conditions += 1;
+        if f.kind == ViolationKind::Interior {
+            tally.interior += 1;
+        }
+    }
+    // The sampled search with 24 samples: the same to the bit, unless it
+    // misses an extremum (two in one sample interval) or the segment's
+    // ends are the infimum (points off a motion).
+    let aligned = sampled.len() == fast.len()
+        && sampled
+            .iter()
+            .zip(&fast)
+            .all(|(s, f)| (s.segment, s.kind, s.boundary) == (f.segment, f.kind, f.boundary));
+    let bitwise = aligned
+        && sampled.iter().zip(&fast).all(|(s, f)| {
+            s.margin.to_bits() == f.margin.to_bits() || (s.margin.is_nan() && f.margin.is_nan())
+        });
+    if bitwise {
+        tally.bitwise_sampled += 1;
+    } else {
+        let diff = format!(
+            "{what}: {:?}",
+            sampled
+                .iter()
+                .zip(&fast)
+                .filter(|(s, f)| s.margin.to_bits() != f.margin.to_bits())
+                .map(|(s, f)| (s.segment, s.kind, s.margin, f.margin))
+                .collect::<Vec<_>>()
+        );
+        assert!(
+            !solution,
+            "a converged motion must keep its margins: {diff}"
+        );
+        tally.differs_from_sampled.push(diff);
+    }
+    // worst_margin: the smallest of them, NaN first.
+    let worst = worst_margin(sim, structure, points).expect("points");
+    let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+    let smallest = fast
+        .iter()
+        .min_by(|a, b| key(a.margin).total_cmp(&key(b.margin)))
+        .expect("conditions");
+    assert!(
+        key(worst.margin) == key(smallest.margin),
+        "{what}: {worst:?} vs {smallest:?}"
+    );
+    let first = fast
+        .iter()
+        .find(|c| key(c.margin) == key(smallest.margin))
+        .expect("the smallest");
+    assert_eq!(
+        (worst.kind, worst.segment, worst.boundary),
+        (first.kind, first.segment, first.boundary),
+        "{what}"
+    );
+}
+
+/// A small deterministic generator (xorshift64*), uniform in [-1, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let r = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d);
+        (r >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+/// The motion, then perturbations of it at three sizes.
+fn motion_and_perturbations<M: Model>(
+    what: &str,
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    rng: &mut Rng,
+    tally: &mut Tally,
+) {
+    compare(what, sim, structure, points, true, tally);
+    let scale = points.iter().map(|p| p.x.abs()).fold(1e-3f64, f64::max);
+    for size in [1e-6, 1e-3, 3e-2, 3e-1] {
+        let moved: Vec<SwitchingPoint> = points
+            .iter()
+            .map(|p| SwitchingPoint {
+                phase: p.phase + size * rng.next(),
+                x: p.x + size * scale * rng.next(),
+            })
+            .collect();
+        compare(
+            &format!("{what} perturbed by {size:e}"),
+            sim,
+            structure,
+            &moved,
+            false,
+            tally,
+        );
+    }
+}
+
+/// The attractor from rest, if it is a periodic motion.
+fn attractor<M: Model>(what: &str, sim: &Simulator<M>, rng: &mut Rng, tally: &mut Tally) -> bool {
+    let start = sim.start(0.0, 0.0, 0.0).expect("start");
+    match attractor::find(sim, start, AttractorOptions::default()) {
+        Ok(Attractor::Periodic(m)) if m.structure.len() <= 40 => {
+            let what = format!("{what}: {}", m.structure.notation(M::INFO));
+            motion_and_perturbations(&what, sim, &m.structure, &m.points, rng, tally);
+            true
+        }
+        _ => false,
+    }
+}
+
+#[test]
+fn fast_margins_match_the_sampled_and_dense_references() {
+    let mut tally = Tally::default();
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    // The reference orbits, and Newton's motions from them.
+    for r in common::reference::references() {
+        let sim = r.simulator();
+        let structure = r.structure();
+        let what = format!("reference {} at W = {}", r.structure, r.w);
+        motion_and_perturbations(&what, &sim, &structure, &r.points, &mut rng, &mut tally);
+        let m = solve(
+            &sim,
+            structure.clone(),
+            r.points.clone(),
+            NewtonOptions::default(),
+        );
+        assert!(m.is_admissible(), "{what}: {:?}", m.violations);
+        compare(&what, &sim, &structure, &m.points, true, &mut tally);
+    }
+    // The paper model over W and Q0 (sticks, passes, grazing neighbourhoods).
+    let mut found = 0;
+    for q0 in [40.0, 70.0, 120.0] {
+        for i in 0..24 {
+            let w = 0.4 + 8.4 * i as f64 / 23.0;
+            let p = paper::Params {
+                W: w,
+                Q0: q0,
+                ..paper::Params::default()
+            };
+            let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("params");
+            let what = format!("paper at W = {w}, Q0 = {q0}");
+            found += attractor(&what, &sim, &mut rng, &mut tally) as usize;
+        }
+    }
+    assert!(found >= 50, "{found} paper motions");
+    // Coulomb friction (a stick boundary only).
+    for (w, q0) in [(0.8, 0.5), (0.5, 1.0), (1.3, 2.0), (0.3, 0.8)] {
+        let p = coulomb::Params {
+            W: w,
+            Q0: q0,
+            ..coulomb::Params::default()
+        };
+        let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).expect("params");
+        attractor(
+            &format!("coulomb at W = {w}, Q0 = {q0}"),
+            &sim,
+            &mut rng,
+            &mut tally,
+        );
+    }
+    // A 16-piece Stribeck law (many narrow bands).
+    for (w, q0) in [(1.5, 6.0), (1.0, 8.0), (2.5, 10.0)] {
+        let sim = Simulator::<Pl16>::new(pl16::Params { W: w, Q0: q0 }, SimOptions::default())
+            .expect("params");
+        attractor(
+            &format!("stribeck pl16 at W = {w}, Q0 = {q0}"),
+            &sim,
+            &mut rng,
+            &mut tally,
+        );
+    }
+    // Negative effective damping in some domains.
+    for w in [1.0, 1.5, 2.5] {
+        let p = stribeck8::Params {
+            W: w,
+            ..stribeck8::Params::default()
+        };
+        let sim = Simulator::<Stribeck8>::new(p, SimOptions::default()).expect("params");
+        attractor(&format!("stribeck8 at W = {w}"), &sim, &mut rng, &mut tally);
+    }
+    eprintln!(
+        "{} point sets, {} conditions ({} interior, {} violated); {} bitwise as the sampled search",
+        tally.point_sets, tally.conditions, tally.interior, tally.violated, tally.bitwise_sampled
+    );
+    for d in tally.differs_from_sampled.iter().take(20) {
+        eprintln!("differs from the sampled search (off a motion): {d}");
+    }
+    assert!(
+        tally.violated > 200,
+        "too few violated conditions: {tally:?}"
+    );
+}
