@@ -715,7 +715,7 @@ fn no_unstable_through_the_cli_keeps_transitions_bifurcations_and_stable_motions
 /// of issue 11): past the period doubling near W = 10.8 the period-1
 /// motion goes on unstable. Today's sweep reports none there.
 #[test]
-#[ignore = "needs the arclength continuation of issue 11 (unstable branches)"]
+
 fn no_unstable_through_the_cli_drops_every_unstable_motion() {
     let (all, stable) = with_and_without();
     let unstable = |v: &Value| {

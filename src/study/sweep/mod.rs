@@ -245,8 +245,8 @@ impl Default for SweepOptions {
                 ..AttractorOptions::default()
             },
             continuation: ContinuationOptions::default(),
-            starts: 8,
-            every: 20,
+            starts: 4,
+            every: 50,
             max_branches: 64,
         }
     }
