@@ -191,11 +191,15 @@ impl<M: Model> Continuer<'_, M> {
         // event as a force criterion that changes sign (the input force of
         // the arriving side vanishes with the acceleration): it is named by
         // the force criterion (stick onset, passable onset), as SPEC §3 does.
-        if let Some((ViolationKind::Arrival | ViolationKind::Interior, b)) = worst {
+        if let Some((
+            ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure,
+            b,
+        )) = worst
+        {
             let force = all.iter().find(|c| {
                 matches!(c.kind, ViolationKind::Pass | ViolationKind::StickOnset)
                     && c.boundary == b
-                    && (c.margin - margin).abs() <= 1e-8 * margin.abs().max(1.0)
+                    && (c.margin - margin).abs() <= 1e-6 * margin.abs().max(1.0)
             });
             if let Some(c) = force {
                 worst = Some((c.kind, c.boundary));
