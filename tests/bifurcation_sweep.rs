@@ -231,3 +231,87 @@ fn the_period_two_motion_of_the_bistable_window_is_found() {
         "{at:#?}"
     );
 }
+
+#[test]
+fn shaws_pitchfork_gives_two_mirror_image_branches() {
+    // Shaw (J. Sound Vib. 108, 1986): the Coulomb oscillator on a fixed
+    // surface, undamped, static friction 1.5 × kinetic. The symmetric
+    // two-stop motion loses stability to a pair of unsymmetric ones.
+    use stickslip::models::coulomb::{Coulomb, Params as C};
+    let base = C {
+        V: 0.0,
+        d: 0.0,
+        mus: 0.45,
+        muk: 0.3,
+        Q0: 1.5,
+        ..C::default()
+    };
+    let s = sweep::<Coulomb>(base, "W", 0.33, 0.42, 10, SweepOptions::default()).expect("sweep");
+    let bp: Vec<_> = s
+        .bifurcations
+        .iter()
+        .filter(|b| b.kind == TransitionKind::BranchPoint)
+        .collect();
+    assert_eq!(bp.len(), 1, "{:#?}", s.bifurcations);
+    let bp = bp[0];
+    assert_eq!(bp.structure, "P_{0_11 1_11 0_11 2_11}");
+    assert!((bp.eigenvalue[0] - 1.0).abs() < 1e-7);
+    let set = format!("V=0,d=0,mus=0.45,muk=0.3,Q0=1.5,W={:.17}", bp.value);
+    let out = Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args([
+            "orbit",
+            "--model",
+            "coulomb",
+            "--structure",
+            &bp.structure,
+            "--set",
+            &set,
+            "--guess",
+            &format!("{:.17},{:.17}", bp.start_wt, bp.start_x),
+            "--json",
+        ])
+        .output()
+        .expect("runs");
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let ev = doc["eigenvalues"].as_array().expect("eigenvalues");
+    assert!(
+        ev.iter()
+            .any(|e| (e[0].as_f64().unwrap() - 1.0).abs() < 1e-7),
+        "orbit gives {ev:?}"
+    );
+    // Two branches born, of the same structure, each with stable points.
+    assert_eq!(bp.born.len(), 2, "{bp:#?}");
+    let (a, b) = (&s.branches[bp.born[0]], &s.branches[bp.born[1]]);
+    for br in [a, b] {
+        assert_eq!(br.structure, bp.structure);
+        assert!(br.points.iter().any(|q| q.stable));
+    }
+    // Mirror images: at the same parameter value, the switching
+    // displacements of one are those of the other with the sign changed.
+    let (qa, qb) = (a.points.last().unwrap(), b.points.last().unwrap());
+    assert!(
+        (qa.value - qb.value).abs() < 1e-9,
+        "{} vs {}",
+        qa.value,
+        qb.value
+    );
+    let scale = qa.points.iter().fold(0.0f64, |m, p| m.max(p.x.abs()));
+    assert!(scale > 1e-3);
+    for p in &qa.points {
+        assert!(
+            qb.points
+                .iter()
+                .any(|q| (q.x + p.x).abs() < 1e-6 * scale.max(1.0)),
+            "x = {} has no mirror in {:?}",
+            p.x,
+            qb.points
+        );
+    }
+    // And they are not symmetric themselves (else they would be the old branch).
+    let symmetric = qa.points.iter().all(|p| {
+        qa.points
+            .iter()
+            .any(|q| (q.x + p.x).abs() < 1e-6 * scale.max(1.0))
+    });
+    assert!(!symmetric, "the born branch is symmetric: {:?}", qa.points);
+}
