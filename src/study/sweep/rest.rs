@@ -52,6 +52,8 @@ pub(super) fn regimes<M: Model>(
         .iter()
         .map(|&v| (0..domains).map(|j| at(v, j)).collect())
         .collect();
+    // `j` is the domain: it indexes the grid's rows and names the domain.
+    #[allow(clippy::needless_range_loop)]
     for j in 0..domains {
         for i in 1..values.len() {
             let (a, b) = (grid[i - 1][j].is_some(), grid[i][j].is_some());
