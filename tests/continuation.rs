@@ -187,6 +187,9 @@ fn orbit_distance<M: Model>(base: &M::Params, index: usize, b: &Branch, f: &Bifu
 fn opts(bounds: (f64, f64)) -> ContinuationOptions {
     ContinuationOptions {
         bounds,
+        // Denser than the default, so that the branches have enough
+        // unstable points to re-simulate.
+        max_step: 5e-2,
         ..ContinuationOptions::default()
     }
 }
