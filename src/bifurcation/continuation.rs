@@ -14,7 +14,7 @@
 //! margin reaches zero the branch ends at a non-smooth transition, located
 //! in arclength by regula falsi (each trial a corrected point) to
 //! `transition_tolerance` in the parameter. The eigenvalue bifurcations are
-//! the sign changes of the test functions over a step ([`super::detect`]),
+//! the sign changes of the test functions over a step (`detect`),
 //! located the same way to `bifurcation_tolerance` and inserted in the
 //! branch.
 
