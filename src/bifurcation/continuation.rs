@@ -10,7 +10,7 @@
 //! change sign twice unseen; it grows by 1.5 after an easy correction.
 //!
 //! At each accepted point: `DP`, its eigenvalues and every admissibility
-//! margin of SPEC §6 (`orbit::admissible::conditions`). Where the smallest
+//! margin of SPEC §6 (`orbit::admissible::worst_margin`). Where the smallest
 //! margin reaches zero the branch ends at a non-smooth transition, located
 //! in arclength by regula falsi (each trial a corrected point) to
 //! `transition_tolerance` in the parameter. The eigenvalue bifurcations are
@@ -27,7 +27,7 @@ use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::param::ParamError;
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::{conditions, ViolationKind};
+use crate::orbit::admissible::{worst_margin, ViolationKind};
 use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use crate::orbit::stability::Stability;
 use crate::orbit::structure::Structure;
@@ -173,38 +173,11 @@ impl<M: Model> Continuer<'_, M> {
             .map_err(|k| format!("mapping {k}: the arrival is tangent to the boundary"))?;
         let stability = Stability::of(&dp);
         let sim = Simulator::<M>::new(p, SimOptions::default()).map_err(|e| e.to_string())?;
-        let mut margin = f64::INFINITY;
-        let mut worst = None;
-        let all = conditions(&sim, self.sys.structure(), &x.points);
-        for c in &all {
-            let g = if c.margin.is_nan() {
-                f64::NEG_INFINITY
-            } else {
-                c.margin
-            };
-            if g < margin || worst.is_none() {
-                margin = g;
-                worst = Some((c.kind, c.boundary));
-            }
-        }
-        // On a stick boundary an arrival that turns tangential is the same
-        // event as a force criterion that changes sign (the input force of
-        // the arriving side vanishes with the acceleration): it is named by
-        // the force criterion (stick onset, passable onset), as SPEC §3 does.
-        if let Some((
-            ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure,
-            b,
-        )) = worst
-        {
-            let force = all.iter().find(|c| {
-                matches!(c.kind, ViolationKind::Pass | ViolationKind::StickOnset)
-                    && c.boundary == b
-                    && (c.margin - margin).abs() <= 1e-6 * margin.abs().max(1.0)
-            });
-            if let Some(c) = force {
-                worst = Some((c.kind, c.boundary));
-            }
-        }
+        let (margin, worst) = match worst_margin(&sim, self.sys.structure(), &x.points) {
+            Some(w) if w.margin.is_nan() => (f64::NEG_INFINITY, Some((w.kind, w.boundary))),
+            Some(w) => (w.margin, Some((w.kind, w.boundary))),
+            None => (f64::INFINITY, None),
+        };
         let tests = Tests::of(&dp, tangent.dl);
         Ok(Sample {
             point: BranchPoint {

@@ -123,7 +123,51 @@ impl Sink for Violated {
     }
 }
 
-impl Sink for Option<Margin> {
+/// The smallest margin, and the smallest force criterion (pass or stick
+/// onset) to name it by when both vanish together (see [`worst_margin`]).
+#[derive(Default)]
+struct Worst {
+    smallest: Option<Margin>,
+    force: Option<Margin>,
+}
+
+/// How close (relative, at least absolute 1e-6) a force criterion's margin
+/// must be to the smallest margin for the two to count as one event.
+pub const SAME_EVENT: f64 = 1e-6;
+
+impl Worst {
+    fn keep(slot: &mut Option<Margin>, m: Margin) {
+        // NaN counts as the smallest (an unevaluable condition is violated).
+        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+        if slot.is_none_or(|w| key(m.margin) < key(w.margin)) {
+            *slot = Some(m);
+        }
+    }
+
+    fn result(self) -> Option<Margin> {
+        let mut w = self.smallest?;
+        // On a stick boundary, a departure, arrival or interior contact that
+        // turns tangential is the same event as a force criterion changing
+        // sign (the input force of that side vanishes with the
+        // acceleration): it is named by the force criterion (stick onset,
+        // passable onset), as SPEC §3 names it.
+        if let (
+            ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure,
+            Some(f),
+        ) = (w.kind, self.force)
+        {
+            if f.boundary == w.boundary
+                && (f.margin - w.margin).abs() <= SAME_EVENT * w.margin.abs().max(1.0)
+            {
+                w.kind = f.kind;
+                w.segment = f.segment;
+            }
+        }
+        Some(w)
+    }
+}
+
+impl Sink for Worst {
     fn add(
         &mut self,
         segment: usize,
@@ -132,16 +176,16 @@ impl Sink for Option<Margin> {
         margin: f64,
         _text: impl FnOnce() -> String,
     ) {
-        // NaN counts as the smallest (an unevaluable condition is violated).
-        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
-        if self.is_none_or(|w| key(margin) < key(w.margin)) {
-            *self = Some(Margin {
-                margin,
-                kind,
-                segment,
-                boundary,
-            });
+        let m = Margin {
+            margin,
+            kind,
+            segment,
+            boundary,
+        };
+        if matches!(kind, ViolationKind::Pass | ViolationKind::StickOnset) {
+            Self::keep(&mut self.force, m);
         }
+        Self::keep(&mut self.smallest, m);
     }
 }
 
@@ -460,16 +504,20 @@ pub fn conditions<M: Model>(
 
 /// The smallest margin of every condition of [`conditions`] (NaN counts as
 /// the smallest), with its kind, segment and boundary; `None` for no points.
-/// Writes no text and allocates nothing: for a continuation that watches
-/// the margins point by point.
+/// Where the smallest is a departure, arrival or interior contact on a stick
+/// boundary and the smallest force criterion (pass, stick onset) on that
+/// boundary is within [`SAME_EVENT`] of it, the two vanish together and the
+/// margin is named by the force criterion (its kind and segment; the value
+/// stays the smallest). Writes no text and allocates nothing: for a
+/// continuation that watches the margins point by point.
 pub fn worst_margin<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Option<Margin> {
-    let mut worst = None;
+    let mut worst = Worst::default();
     walk(sim, structure, points, &mut worst);
-    worst
+    worst.result()
 }
 
 fn walk<M: Model>(

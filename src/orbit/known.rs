@@ -12,7 +12,7 @@
 use crate::dynamics::simulate::{Location, Segment, Simulator};
 use crate::model::Model;
 use crate::orbit::attractor::{find_or_stop, Attractor, AttractorOptions, Settle};
-use crate::orbit::motion::{Motion, OrbitError};
+use crate::orbit::motion::{segment_at, Motion, OrbitError};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
@@ -46,7 +46,6 @@ pub fn stroboscopic_states<M: Model>(
     motion: &Motion,
     phase0: f64,
 ) -> Vec<StroboscopicState> {
-    let info = M::INFO;
     let steps = motion.structure.steps();
     let pts = &motion.points;
     let m = steps.len();
@@ -65,18 +64,8 @@ pub fn stroboscopic_states<M: Model>(
             while k + 1 < m && pts[k + 1].phase <= phi {
                 k += 1;
             }
-            let map = info.mappings[steps[k]];
-            let location = match map.domain {
-                Some(j) => Location::Domain(j),
-                None => Location::Stick,
-            };
-            let seg = Segment {
-                x: pts[k].x,
-                v: sim.velocity(map.from),
-                phase: pts[k].phase,
-                location,
-                search_from: pts[k].phase,
-            };
+            let seg = segment_at(sim, &motion.structure, pts, k);
+            let location = seg.location;
             debug_assert!(phi < first + cycle);
             let (x, v) = sim.state_at(&seg, phi);
             StroboscopicState { x, v, location }

@@ -3,9 +3,9 @@
 
 use nalgebra::Matrix2;
 
-use crate::dynamics::simulate::{SimError, Simulator};
+use crate::dynamics::simulate::{Location, Segment, SimError, Simulator};
 use crate::model::param::ParamError;
-use crate::model::Model;
+use crate::model::{MappingKind, Model};
 use crate::orbit::admissible::{violations, Violation};
 use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
 use crate::orbit::stability::Stability;
@@ -43,6 +43,30 @@ impl Motion {
             return Err(OrbitError::Inadmissible(Box::new(self)));
         }
         Ok(self)
+    }
+}
+
+/// The segment of simulation that starts at switching point `k` of
+/// `points` (of `structure`): mapping `k`'s flow in its domain, or its stick,
+/// from the point's displacement at the boundary's velocity.
+pub fn segment_at<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    k: usize,
+) -> Segment {
+    let mi = M::INFO.mappings[structure.steps()[k]];
+    let location = match (mi.kind, mi.domain) {
+        (MappingKind::Stick, _) | (_, None) => Location::Stick,
+        (_, Some(j)) => Location::Domain(j),
+    };
+    let a = points[k];
+    Segment {
+        x: a.x,
+        v: sim.velocity(mi.from),
+        phase: a.phase,
+        location,
+        search_from: a.phase,
     }
 }
 

@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use crate::dynamics::simulate::{Location, Segment, SimError, Simulator};
-use crate::model::{MappingKind, Model};
-use crate::orbit::motion::Motion;
+use crate::model::Model;
+use crate::orbit::motion::{segment_at, Motion};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
@@ -137,30 +137,18 @@ impl History {
     /// forcing period plus every switching point (at a switching instant the
     /// segment ending there and the one starting there each give a sample).
     pub fn of_motion<M: Model>(sim: &Simulator<M>, motion: &Motion, per_period: usize) -> Self {
-        let info = M::INFO;
         let m = motion.points.len();
         let cycle = TAU * motion.structure.periods() as f64;
         let origin = motion.points[0].phase;
         let pieces: Vec<Piece> = (0..m)
             .map(|k| {
-                let mi = &info.mappings[motion.structure.steps()[k]];
                 let a = motion.points[k];
                 let end = if k + 1 < m {
                     motion.points[k + 1].phase
                 } else {
                     origin + cycle
                 };
-                let location = match (mi.kind, mi.domain) {
-                    (MappingKind::Stick, _) | (_, None) => Location::Stick,
-                    (_, Some(j)) => Location::Domain(j),
-                };
-                let seg = Segment {
-                    x: a.x,
-                    v: sim.velocity(mi.from),
-                    phase: a.phase,
-                    location,
-                    search_from: a.phase,
-                };
+                let seg = segment_at(sim, &motion.structure, &motion.points, k);
                 Self::piece(sim, &seg, a.phase, end, origin, per_period, true)
             })
             .collect();

@@ -16,9 +16,9 @@ use crate::orbit::attractor::Attractor;
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::Termination;
 use crate::orbit::structure::Structure;
-use crate::study::search::{coexisting, SearchOptions};
+use crate::study::search::{coexisting, same_motion, SearchOptions};
 
-use super::grid::{at_value, same_cycle, same_points};
+use super::grid::{at_value, SAME};
 use super::settle;
 use super::{stick_summary, with, MotionSummary, SweepOptions, Transition};
 
@@ -105,10 +105,9 @@ impl<'a, M: Model> Explorer<'a, M> {
     fn holding(&self, motion: &Motion, value: f64) -> Option<usize> {
         let sim = self.simulator(value)?;
         self.branches.iter().position(|b| {
-            same_cycle(&b.structure, &motion.structure)
-                && at_value(&sim, b, value)
-                    .iter()
-                    .any(|m| same_points(&m.points, &motion.points))
+            at_value(&sim, b, value)
+                .iter()
+                .any(|m| same_motion(m, motion, SAME))
         })
     }
 
@@ -329,15 +328,7 @@ impl<'a, M: Model> Explorer<'a, M> {
             let structure = b.structure.clone();
             let names: Vec<String> = starts
                 .iter()
-                .map(|s| {
-                    let n = s.structure.periods();
-                    let t = s.structure.notation(M::INFO);
-                    if n > 1 {
-                        format!("{t}^{n}")
-                    } else {
-                        t
-                    }
-                })
+                .map(|s| settle::structure_name::<M>(&s.structure))
                 .collect();
             let to = if !names.is_empty() {
                 let mut names = names;

@@ -6,9 +6,11 @@ use crate::dynamics::simulate::Simulator;
 use crate::model::Model;
 use crate::orbit::motion::{solve_with, Motion};
 use crate::orbit::periodic::SwitchingPoint;
-use crate::orbit::structure::Structure;
+use crate::study::search::same_motion;
 
-const TAU: f64 = 2.0 * std::f64::consts::PI;
+/// Two motions closer than this (switching points: phases in radians,
+/// displacements relative to the motion's size) are one.
+pub(super) const SAME: f64 = 1e-6;
 
 /// Every motion of `branch` at the simulator's parameter `value`: one per
 /// stretch of the branch (between two of its points) that crosses `value`,
@@ -43,35 +45,9 @@ pub(super) fn at_value<M: Model>(sim: &Simulator<M>, branch: &Branch, value: f64
             Default::default(),
             false,
         );
-        if m.termination.converged() && !out.iter().any(|o| same_points(&o.points, &m.points)) {
+        if m.termination.converged() && !out.iter().any(|o| same_motion(o, &m, SAME)) {
             out.push(m);
         }
     }
     out
-}
-
-/// Whether two cycles are the same up to where they start: equal periods and
-/// a rotation of one's mappings equal to the other's.
-pub(super) fn same_cycle(a: &Structure, b: &Structure) -> bool {
-    let (sa, sb) = (a.steps(), b.steps());
-    if a.periods() != b.periods() || sa.len() != sb.len() {
-        return false;
-    }
-    let m = sa.len();
-    (0..m).any(|r| (0..m).all(|k| sa[(r + k) % m] == sb[k]))
-}
-
-/// Whether two motions pass the same switching points (phases mod 2π), in
-/// whatever order, to 1e-6 relative.
-pub(super) fn same_points(a: &[SwitchingPoint], b: &[SwitchingPoint]) -> bool {
-    if a.len() != b.len() {
-        return false;
-    }
-    let scale = a.iter().chain(b).fold(1.0f64, |s, p| s.max(p.x.abs()));
-    let close = |p: &SwitchingPoint, q: &SwitchingPoint| {
-        let d = (p.phase - q.phase).rem_euclid(TAU);
-        d.min(TAU - d) < 1e-6 && (p.x - q.x).abs() < 1e-6 * scale
-    };
-    a.iter().all(|p| b.iter().any(|q| close(p, q)))
-        && b.iter().all(|q| a.iter().any(|p| close(p, q)))
 }

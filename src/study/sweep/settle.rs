@@ -1,10 +1,11 @@
 //! What lives at a parameter value where no followed branch says: found by
 //! simulation, from rest or from the state of a motion that just ended.
 
-use crate::dynamics::simulate::{Location, Segment, SimOptions, Simulator};
+use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
 use crate::orbit::attractor::{self, Attractor};
-use crate::orbit::motion::{Motion, OrbitError};
+use crate::orbit::motion::{segment_at, Motion, OrbitError};
+use crate::orbit::structure::Structure;
 
 use super::SweepOptions;
 
@@ -24,11 +25,16 @@ pub(super) fn name<M: Model>(found: &Result<Attractor, OrbitError>) -> String {
 
 /// `P_{...}`, with `^N` for a motion of N > 1 forcing periods.
 pub(super) fn motion_name<M: Model>(m: &Motion) -> String {
-    let n = m.structure.periods();
+    structure_name::<M>(&m.structure)
+}
+
+/// `P_{...}`, with `^N` for a structure of N > 1 forcing periods.
+pub(super) fn structure_name<M: Model>(s: &Structure) -> String {
+    let n = s.periods();
     if n > 1 {
-        format!("{}^{n}", m.structure.notation(M::INFO))
+        format!("{}^{n}", s.notation(M::INFO))
     } else {
-        m.structure.notation(M::INFO)
+        s.notation(M::INFO)
     }
 }
 
@@ -48,18 +54,7 @@ pub(super) fn from_motion<M: Model>(
     old: &Motion,
     opts: &SweepOptions,
 ) -> Result<Attractor, OrbitError> {
-    let first = M::INFO.mappings[old.structure.steps()[0]];
-    let pt = old.points[0];
-    let start = Segment {
-        x: pt.x,
-        v: sim.velocity(first.from),
-        phase: pt.phase,
-        location: match first.domain {
-            Some(j) => Location::Domain(j),
-            None => Location::Stick,
-        },
-        search_from: pt.phase,
-    };
+    let start = segment_at(sim, &old.structure, &old.points, 0);
     attractor::find(sim, start, opts.attractor)
 }
 
