@@ -10,6 +10,7 @@ use serde::Serialize;
 pub mod bordered;
 pub mod branch;
 pub mod continuation;
+pub mod curve;
 mod detect;
 pub mod switching;
 

@@ -7,6 +7,7 @@
 //!
 //! Continuation, two-parameter curves, chaos and basins belong here too.
 
+pub mod curves;
 pub mod map;
 pub mod search;
 pub mod sweep;

@@ -1,0 +1,236 @@
+//! Two-parameter continuation of a transition: the curve in a parameter
+//! plane along which one condition of a motion vanishes (SPEC §6, §7).
+//!
+//! The unknowns are the motion's switching points and both parameters; the
+//! equations are the mapping equations, the condition (an admissibility
+//! margin, an eigenvalue test function, or the grazing of the no-motion
+//! regime's steady response), and the pseudo-arclength row. A curve is
+//! followed both ways to the box's edge, back to itself, or to a
+//! codimension-two point where a second condition vanishes too.
+
+use crate::bifurcation::TransitionKind;
+use crate::model::Model;
+use crate::orbit::admissible::ViolationKind;
+use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::structure::Structure;
+
+/// What vanishes along a curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Condition {
+    /// An admissibility condition's margin (SPEC §6): grazing, stick onset,
+    /// stick vanishing, passable onset. Identified as in
+    /// [`crate::orbit::admissible::Margin`].
+    Margin {
+        /// Which condition.
+        kind: ViolationKind,
+        /// Index of the mapping (in application order).
+        segment: usize,
+        /// The boundary involved, if any.
+        boundary: Option<usize>,
+    },
+    /// An eigenvalue bifurcation's test function: `Fold` (det(I − DP)),
+    /// `PeriodDoubling` (det(I + DP)), `NeimarkSacker` (det DP − 1 with a
+    /// complex pair).
+    Eigen(TransitionKind),
+    /// The no-motion regime's steady response grazes boundary `boundary`
+    /// (no switching points: the curve's structure is `None`).
+    RestGrazing {
+        /// The boundary grazed.
+        boundary: usize,
+    },
+}
+
+/// The parameter plane: which two parameters are free, and the box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    /// Index of the horizontal parameter (`ParamSet` order).
+    pub x: usize,
+    /// Index of the vertical parameter.
+    pub y: usize,
+    /// `[lo, hi]` of the horizontal parameter.
+    pub x_range: [f64; 2],
+    /// `[lo, hi]` of the vertical parameter.
+    pub y_range: [f64; 2],
+}
+
+/// A point of a curve: both parameters and the motion's switching points
+/// there (empty for [`Condition::RestGrazing`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurvePoint {
+    /// The horizontal parameter.
+    pub x: f64,
+    /// The vertical parameter.
+    pub y: f64,
+    /// The switching points of the motion at `(x, y)`.
+    pub points: Vec<SwitchingPoint>,
+}
+
+/// Why a curve ends.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CurveEndReason {
+    /// It leaves the box.
+    BoxEdge,
+    /// A second condition vanishes: a codimension-two point. `kind` is the
+    /// transition that second condition marks.
+    Codim2 {
+        /// The second condition's transition.
+        kind: TransitionKind,
+        /// Its boundary, if any.
+        boundary: Option<usize>,
+    },
+    /// The corrector failed at the smallest step (Newton's reason).
+    NewtonFailure(String),
+    /// The point limit.
+    MaxPoints,
+}
+
+/// One end of a curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CurveEnd {
+    /// Why it ends.
+    pub reason: CurveEndReason,
+    /// Where (located to the options' tolerance).
+    pub at: CurvePoint,
+}
+
+/// A codimension-two point inside a curve, where the curve goes on: for
+/// example a fold curve meeting this grazing curve (the motion's stability
+/// changes along it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Special {
+    /// It lies between `points[index]` and `points[index + 1]`.
+    pub index: usize,
+    /// The transition met.
+    pub kind: TransitionKind,
+    /// Where.
+    pub at: CurvePoint,
+}
+
+/// A traced curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// The transition it marks.
+    pub kind: TransitionKind,
+    /// The condition that vanishes along it.
+    pub condition: Condition,
+    /// The boundary involved, if any.
+    pub boundary: Option<usize>,
+    /// The motion's structure (`None` for the no-motion regime).
+    pub structure: Option<Structure>,
+    /// Its points in arclength order.
+    pub points: Vec<CurvePoint>,
+    /// Its two ends (first end at `points[0]`, second at the last point);
+    /// empty when the curve closes on itself.
+    pub ends: Vec<CurveEnd>,
+    /// Codimension-two points inside the curve.
+    pub special: Vec<Special>,
+}
+
+/// Settings of a curve's continuation. Steps are arclengths in the scaled
+/// metric of [`crate::bifurcation::ContinuationOptions`], each parameter
+/// over its range's span.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurveOptions {
+    /// The first step.
+    pub initial_step: f64,
+    /// Below this step the corrector's failure ends the curve.
+    pub min_step: f64,
+    /// The largest step.
+    pub max_step: f64,
+    /// At most this many points per direction.
+    pub max_points: usize,
+    /// Every point satisfies the mapping equations and the condition to this.
+    pub tolerance: f64,
+    /// Codimension-two points and crossings are located to this in the parameters.
+    pub location_tolerance: f64,
+}
+
+impl Default for CurveOptions {
+    fn default() -> Self {
+        Self {
+            initial_step: 1e-2,
+            min_step: 1e-9,
+            max_step: 0.05,
+            max_points: 20_000,
+            tolerance: 1e-12,
+            location_tolerance: 1e-10,
+        }
+    }
+}
+
+/// A line of the plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Line {
+    /// The vertical line `x = value`.
+    X(f64),
+    /// The horizontal line `y = value`.
+    Y(f64),
+}
+
+/// Why a curve could not be traced.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CurveError {
+    /// Bad plane or options.
+    #[error("bad curve options: {0}")]
+    Options(String),
+    /// The start does not lie on the condition's curve (Newton's reason).
+    #[error("the start is not on the curve: {0}")]
+    Start(String),
+    /// The condition cannot be evaluated there.
+    #[error("the condition cannot be evaluated: {0}")]
+    Condition(String),
+}
+
+/// Trace the curve through `start` on which `condition` of the motion of
+/// `structure` vanishes, both ways, in `plane` (every other parameter from
+/// `base`). `start` need only be close: it is corrected first.
+pub fn trace<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: Option<&Structure>,
+    start: &CurvePoint,
+    condition: Condition,
+    opts: &CurveOptions,
+) -> Result<Curve, CurveError> {
+    let _ = (base, plane, structure, start, condition, opts);
+    Err(CurveError::Options("not built yet".into()))
+}
+
+/// The condition's value at `point` (the motion's switching points given,
+/// not corrected): zero on the curve. For tests and checks.
+pub fn condition_value<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: Option<&Structure>,
+    point: &CurvePoint,
+    condition: Condition,
+) -> Result<f64, CurveError> {
+    let _ = (base, plane, structure, point, condition);
+    Err(CurveError::Options("not built yet".into()))
+}
+
+/// Where `curve` crosses `line`, each crossing solved exactly (the curve's
+/// equations with the line's parameter fixed), in curve order.
+pub fn crossings<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    curve: &Curve,
+    line: Line,
+    opts: &CurveOptions,
+) -> Vec<CurvePoint> {
+    let _ = (base, plane, curve, line, opts);
+    Vec::new()
+}
+
+/// Which condition vanishes at a transition of kind `kind` located on a
+/// branch of `structure` at parameters `p` with switching points `points`
+/// (for a non-smooth kind: the smallest admissibility margin there).
+pub fn condition_at_transition<M: Model>(
+    p: &M::Params,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    kind: TransitionKind,
+) -> Option<Condition> {
+    let _ = (p, structure, points, kind);
+    None
+}
