@@ -19,6 +19,7 @@ pub mod legend;
 pub mod map;
 pub mod orbit;
 pub mod palette;
+pub mod regime;
 pub mod sweep;
 pub mod symbol;
 pub mod trade;

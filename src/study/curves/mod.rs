@@ -5,6 +5,11 @@
 
 use serde::Serialize;
 
+pub mod regions;
+
+pub use regions::{regions, Regions};
+
+use crate::bifurcation::curve::Line;
 use crate::bifurcation::TransitionKind;
 use crate::model::Model;
 
@@ -15,11 +20,13 @@ pub struct CurvesOptions {
     pub x: (String, [f64; 2]),
     /// The vertical parameter and its range.
     pub y: (String, [f64; 2]),
-    /// Seed lines: sweeps along `x` at these values of `y` (`--seed y=v`;
-    /// the middle of the range when empty). More are added automatically.
-    pub seeds: Vec<f64>,
-    /// Report where each curve crosses these horizontal lines `y = v` (`--at`).
-    pub at: Vec<f64>,
+    /// Seed lines (`--seed Q0=70`: the sweep along `x` at `y = 70`;
+    /// `--seed W=5`: along `y` at `x = 5`). The middle horizontal line when
+    /// empty. More are added automatically.
+    pub seeds: Vec<Line>,
+    /// Report where each curve crosses these lines (`--at Q0=v1,v2`: the
+    /// horizontal lines `y = v`; `--at W=...`: vertical ones).
+    pub at: Vec<Line>,
 }
 
 /// One end of a curve, as reported.
