@@ -19,7 +19,7 @@ use crate::orbit::structure::Structure;
 mod sink;
 
 pub use sink::{Margin, Violation, ViolationKind, SAME_EVENT};
-use sink::{Sink, Violated, Worst};
+use sink::{Except, Only, Sink, Violated, Worst};
 
 /// Tolerance on phases when comparing a simulated event with a switching point.
 fn phase_tol(phase: f64) -> f64 {
@@ -350,6 +350,48 @@ pub fn worst_margin<M: Model>(
     let mut worst = Worst::default();
     walk(sim, structure, points, &mut worst);
     worst.result()
+}
+
+/// The margin of the one condition `(kind, segment, boundary)` of
+/// [`conditions`] (the smallest if several match; NaN: not evaluable),
+/// `None` if the walk does not evaluate it at these points. No text, no
+/// allocation: the condition of a two-parameter curve.
+pub(crate) fn margin_of<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    (kind, segment, boundary): (ViolationKind, usize, Option<usize>),
+) -> Option<f64> {
+    let mut only = Only {
+        kind,
+        segment,
+        boundary,
+        margin: None,
+    };
+    walk(sim, structure, points, &mut only);
+    only.margin
+}
+
+/// [`worst_margin`] over every condition but `(kind, segment, boundary)`
+/// (whose margin is `value`) and its twin on the same boundary (the force
+/// criterion of the same event, or the contact it is named by; see
+/// [`SAME_EVENT`]): what ends a two-parameter curve of that condition.
+pub(crate) fn worst_margin_except<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    (kind, segment, boundary): (ViolationKind, usize, Option<usize>),
+    value: f64,
+) -> Option<Margin> {
+    let mut except = Except {
+        kind,
+        segment,
+        boundary,
+        value,
+        worst: Worst::default(),
+    };
+    walk(sim, structure, points, &mut except);
+    except.worst.result()
 }
 
 fn walk<M: Model>(

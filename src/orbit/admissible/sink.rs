@@ -174,3 +174,78 @@ impl Sink for Worst {
         Self::keep(&mut self.smallest, m);
     }
 }
+
+/// One condition alone, picked by its kind, segment and boundary: the
+/// smallest margin among the matching ones (a two-parameter curve's
+/// condition, `bifurcation::curve`).
+pub(super) struct Only {
+    pub(super) kind: ViolationKind,
+    pub(super) segment: usize,
+    pub(super) boundary: Option<usize>,
+    pub(super) margin: Option<f64>,
+}
+
+impl Sink for Only {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        _text: impl FnOnce() -> String,
+    ) {
+        if kind == self.kind && segment == self.segment && boundary == self.boundary {
+            let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+            if self.margin.is_none_or(|w| key(margin) < key(w)) {
+                self.margin = Some(margin);
+            }
+        }
+    }
+}
+
+/// The smallest margin (named as [`Worst`] names it) of every condition but
+/// one (its kind, segment and boundary) and its twin: a condition of the
+/// other class on the same boundary (force criterion against departure,
+/// arrival or interior contact) whose margin is within [`SAME_EVENT`] of
+/// the excluded one's `value` (the same event, SPEC §3).
+pub(super) struct Except {
+    pub(super) kind: ViolationKind,
+    pub(super) segment: usize,
+    pub(super) boundary: Option<usize>,
+    pub(super) value: f64,
+    pub(super) worst: Worst,
+}
+
+fn is_force(kind: ViolationKind) -> bool {
+    matches!(kind, ViolationKind::Pass | ViolationKind::StickOnset)
+}
+
+fn is_contact(kind: ViolationKind) -> bool {
+    matches!(
+        kind,
+        ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure
+    )
+}
+
+impl Sink for Except {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        text: impl FnOnce() -> String,
+    ) {
+        if kind == self.kind && segment == self.segment && boundary == self.boundary {
+            return;
+        }
+        let twin = boundary.is_some()
+            && boundary == self.boundary
+            && ((is_force(kind) && is_contact(self.kind))
+                || (is_contact(kind) && is_force(self.kind)))
+            && (margin - self.value).abs() <= SAME_EVENT * self.value.abs().max(1.0);
+        if !twin {
+            self.worst.add(segment, kind, boundary, margin, text);
+        }
+    }
+}
