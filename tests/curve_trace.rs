@@ -101,7 +101,7 @@ fn curves_of<M: Model>(base: &M::Params, plane: &Plane, branch: &Branch, q: f64)
         let p = with(base, plane, at.value, q);
         let Some(cond) = condition_at_transition::<M>(&p, &branch.structure, &at.points, kind)
         else {
-            eprintln!("no condition for {kind:?} at W = {}", at.value);
+            eprintln!("no condition for {kind:?} at W = {} (a vanishing segment)", at.value);
             continue;
         };
         let start = CurvePoint {
@@ -111,7 +111,7 @@ fn curves_of<M: Model>(base: &M::Params, plane: &Plane, branch: &Branch, q: f64)
         };
         match trace::<M>(base, plane, Some(&branch.structure), &start, cond, &opts) {
             Ok(c) => out.push(c),
-            Err(e) => eprintln!("{kind:?} at W = {}: {e}", at.value),
+            Err(e) => eprintln!("{kind:?} {cond:?} at W = {}: {e}", at.value),
         }
     }
     out
@@ -187,7 +187,7 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
     let plane = paper_plane();
     let mut curves: Vec<Curve> = Vec::new();
     let mut seen: Vec<Structure> = Vec::new();
-    for w in [1.0, 2.5, 3.9, 5.5] {
+    for w in [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 3.9, 4.5, 5.0, 5.5, 6.5, 7.5] {
         let Some(b) = branch_at::<Paper>(&base, &plane, w, 70.0) else {
             continue;
         };

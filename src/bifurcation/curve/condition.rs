@@ -23,7 +23,7 @@ use super::Condition;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
-use crate::orbit::admissible::{self, ViolationKind};
+use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
 use crate::orbit::attractor::steady_response;
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::structure::Structure;
@@ -99,7 +99,14 @@ pub(super) struct Evaluator<M: Model> {
     /// The no-motion regime's domain of a `RestGrazing` condition.
     pub rest_domain: usize,
     pub sim: Simulator<M>,
+    /// The conditions left out of [`Self::other`] (the curve's own and
+    /// those that vanish with it), the first `excluded_len`.
+    excluded: [ConditionId; 8],
+    excluded_len: usize,
 }
+
+/// At most this many conditions vanish with a curve's own.
+const MAX_EXCLUDED: usize = 8;
 
 impl<M: Model> Evaluator<M> {
     /// The evaluator at parameters `p` (which must be valid).
@@ -117,7 +124,49 @@ impl<M: Model> Evaluator<M> {
             structure: structure.cloned(),
             rest_domain,
             sim,
+            excluded: [(ViolationKind::Other, usize::MAX, None); MAX_EXCLUDED],
+            excluded_len: match condition {
+                Condition::Margin { .. } => 1,
+                _ => 0,
+            },
         })
+        .map(|mut e: Self| {
+            if let Condition::Margin {
+                kind,
+                segment,
+                boundary,
+            } = condition
+            {
+                e.excluded[0] = (kind, segment, boundary);
+            }
+            e
+        })
+    }
+
+    /// Leave out of [`Self::other`] every condition that vanishes with the
+    /// curve's own at `(points, p)` (a point of the curve): margin within
+    /// [`SAME_EVENT`] of zero (absolute, in the quantity's unit). A
+    /// transition where a segment shrinks to nothing makes its duration,
+    /// its departure and arrival and the force criteria there vanish
+    /// together, all along the curve: they are one event, not a
+    /// codimension-two point.
+    pub fn exclude_companions(&mut self, p: &M::Params, points: &[SwitchingPoint]) {
+        let (Condition::Margin { .. }, Some(structure)) = (self.condition, &self.structure) else {
+            return;
+        };
+        if self.sim.set_params(*p).is_err() {
+            return;
+        }
+        for c in admissible::conditions(&self.sim, structure, points) {
+            let id = (c.kind, c.segment, c.boundary);
+            if c.margin.abs() <= SAME_EVENT
+                && self.excluded_len < MAX_EXCLUDED
+                && !self.excluded[..self.excluded_len].contains(&id)
+            {
+                self.excluded[self.excluded_len] = id;
+                self.excluded_len += 1;
+            }
+        }
     }
 
     /// The condition's value at `(points, p)`: zero on the curve, NaN
@@ -149,14 +198,12 @@ impl<M: Model> Evaluator<M> {
     /// The smallest margin of the conditions that must hold along the curve
     /// besides its own (NaN counts as −∞), with the condition's kind and
     /// boundary: for a `Margin` curve every other condition of the motion
-    /// (and the same event's twin left out, see
-    /// [`admissible::worst_margin_except`]); for an `Eigen` curve every
+    /// (those that vanish with it left out, see [`Self::exclude_companions`]); for an `Eigen` curve every
     /// condition; for `RestGrazing` the domain's other boundary.
     pub fn other(
         &mut self,
         p: &M::Params,
         points: &[SwitchingPoint],
-        value: f64,
     ) -> (f64, Option<(ViolationKind, Option<usize>)>) {
         let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
         if let Condition::RestGrazing { boundary } = self.condition {
@@ -180,16 +227,11 @@ impl<M: Model> Evaluator<M> {
             return (f64::NEG_INFINITY, None);
         }
         let worst = match self.condition {
-            Condition::Margin {
-                kind,
-                segment,
-                boundary,
-            } => admissible::worst_margin_except(
+            Condition::Margin { .. } => admissible::worst_margin_except(
                 &self.sim,
                 structure,
                 points,
-                (kind, segment, boundary),
-                value,
+                &self.excluded[..self.excluded_len],
             ),
             _ => admissible::worst_margin(&self.sim, structure, points),
         };

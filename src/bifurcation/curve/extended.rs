@@ -259,22 +259,53 @@ impl<M: Model> Extended<M> {
         // The condition's row: its value and central differences.
         let g = self.condition(x);
         self.rhs[2 * m] = -g;
+        if !g.is_finite() {
+            return Err(format!("the condition is not finite ({g:e})"));
+        }
         let mut trial = std::mem::take(&mut self.trial);
         trial.copy_from_slice(x);
         for i in 0..n {
-            let h = self.fd_step(x, i);
-            trial[i] = x[i] + h;
-            let gp = self.condition(&trial);
-            trial[i] = x[i] - h;
-            let gm = self.condition(&trial);
+            // Central differences; where the condition is not defined on
+            // one side at this step (a short segment reversed), smaller
+            // steps, then a one-sided difference.
+            let mut d = f64::NAN;
+            let mut h = self.fd_step(x, i);
+            for _ in 0..3 {
+                trial[i] = x[i] + h;
+                let gp = self.condition(&trial);
+                trial[i] = x[i] - h;
+                let gm = self.condition(&trial);
+                d = if gp.is_finite() && gm.is_finite() {
+                    (gp - gm) / (2.0 * h)
+                } else if gp.is_finite() {
+                    (gp - g) / h
+                } else if gm.is_finite() {
+                    (g - gm) / h
+                } else {
+                    f64::NAN
+                };
+                if gp.is_finite() && gm.is_finite() {
+                    break;
+                }
+                h *= 1e-2;
+            }
             trial[i] = x[i];
-            self.jac[2 * m * n + i] = (gp - gm) / (2.0 * h);
+            self.jac[2 * m * n + i] = d;
         }
         self.trial = trial;
-        if !self.jac[..(2 * m + 1) * n].iter().all(|v| v.is_finite()) || !g.is_finite() {
-            return Err(format!(
-                "the condition or a mapping's derivatives are not finite (condition {g:e})"
-            ));
+        if !g.is_finite() {
+            return Err(format!("the condition is not finite ({g:e})"));
+        }
+        if let Some(i) = self.jac[..(2 * m + 1) * n]
+            .iter()
+            .position(|v| !v.is_finite())
+        {
+            let (row, col) = (i / n, i % n);
+            return Err(if row == 2 * m {
+                format!("the condition's derivative in unknown {col} is not finite (the condition is not defined on both sides)")
+            } else {
+                format!("mapping {}'s derivative in unknown {col} is not finite", row / 2)
+            });
         }
         Ok(r)
     }

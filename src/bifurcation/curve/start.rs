@@ -18,6 +18,9 @@ use super::{
     Condition, Curve, CurveEnd, CurveError, CurveOptions, CurvePoint, Plane, Special,
 };
 
+/// A segment shorter than this (in `W t`) at a transition shrinks to nothing there.
+const VANISHING: f64 = 1e-3;
+
 /// The unknowns `(x_0, W t_0, …, λx, λy)` of a curve point.
 pub fn unknowns(point: &CurvePoint) -> Vec<f64> {
     let mut x = Vec::with_capacity(2 * point.points.len() + 2);
@@ -261,6 +264,11 @@ pub fn trace<M: Model>(
         }
     }
     let x = corrected.ok_or(CurveError::Start(why))?;
+    {
+        let p = tracer.sys.params(&x);
+        let pts = to_point(&x).points;
+        tracer.sys.eval.exclude_companions(&p, &pts);
+    }
     let mut t = vec![0.0; n];
     let mut tangent = Err(String::new());
     for axis in [0, 1] {
@@ -355,10 +363,17 @@ pub fn condition_value<M: Model>(
 /// branch of `structure` at parameters `p` with switching points `points`.
 ///
 /// For a non-smooth kind: the admissibility condition with the smallest
-/// margin there (its own kind, segment and boundary, not renamed by a force
-/// criterion vanishing with it: the contact's margin is the smooth one);
-/// `None` if that is a stick's end (`StickEnd`, whose margin is a phase
-/// difference with a jump, no smooth function) or not evaluable. For an
+/// margin there among those that name `kind` (as
+/// [`crate::bifurcation::transition_kind`] names them; any kind if none
+/// does), leaving out an interior margin to a boundary the segment both
+/// starts and ends on (an excursion shrinking to nothing: its margin
+/// vanishes quadratically, its arrival's linearly, and the arrival is
+/// taken); `None` if the smallest of all is a stick's end (`StickEnd`,
+/// whose margin is a phase difference with a jump, no smooth function) or
+/// nothing is evaluable, or if a segment's duration is below `1e-3` rad
+/// there (a segment shrinking to nothing: the structure's equations
+/// degenerate on the curve, which the motion on the other side of the
+/// transition carries). For an
 /// eigenvalue kind: `Eigen(kind)`; a branch point keeps its kind and is
 /// traced on `det(I − DP)` like a fold.
 pub fn condition_at_transition<M: Model>(
@@ -374,16 +389,50 @@ pub fn condition_at_transition<M: Model>(
         return None;
     }
     let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
-    let smallest = admissible::conditions(&sim, structure, points)
-        .into_iter()
-        .filter(|c| c.margin.is_finite() && c.kind != ViolationKind::Other)
+    let all = admissible::conditions(&sim, structure, points);
+    let info = M::INFO;
+    // An interior margin to a boundary that the segment starts and ends
+    // on measures an excursion that shrinks to nothing: it vanishes
+    // quadratically (no simple zero), with the arrival's that vanishes
+    // linearly.
+    let degenerate = |c: &admissible::Violation| {
+        c.kind == ViolationKind::Interior && {
+            let mi = info.mappings[structure.steps()[c.segment]];
+            c.boundary == Some(mi.from) && c.boundary == Some(mi.to)
+        }
+    };
+    let usable = |c: &&admissible::Violation| {
+        c.margin.is_finite()
+            && !matches!(c.kind, ViolationKind::Other | ViolationKind::StickEnd)
+            && !degenerate(c)
+    };
+    let pick = |named: bool| {
+        all.iter()
+            .filter(usable)
+            .filter(|c| !named || transition_kind(c.kind) == kind)
+            .min_by(|a, b| a.margin.total_cmp(&b.margin))
+    };
+    let smallest = all
+        .iter()
+        .filter(|c| c.margin.is_finite())
         .min_by(|a, b| a.margin.total_cmp(&b.margin))?;
     if smallest.kind == ViolationKind::StickEnd {
         return None;
     }
+    // A segment shrinking to nothing: its mapping equation degenerates
+    // (its arrival and departure turn tangential with it), so no condition
+    // of this structure has a regular curve there; the motion on the other
+    // side of the transition carries it.
+    if all
+        .iter()
+        .any(|c| c.kind == ViolationKind::Duration && c.margin.abs() <= VANISHING)
+    {
+        return None;
+    }
+    let chosen = pick(true).or_else(|| pick(false))?;
     Some(Condition::Margin {
-        kind: smallest.kind,
-        segment: smallest.segment,
-        boundary: smallest.boundary,
+        kind: chosen.kind,
+        segment: chosen.segment,
+        boundary: chosen.boundary,
     })
 }

@@ -77,8 +77,7 @@ impl<M: Model> Tracer<'_, M> {
         } else {
             None
         };
-        let value = self.sys.condition(&x);
-        let (other, worst) = self.sys.eval.other(&p, &pts, value);
+        let (other, worst) = self.sys.eval.other(&p, &pts);
         let (plus, minus, disc) = dp.map_or((f64::NAN, f64::NAN, f64::NAN), |d| {
             let (tr, det) = (d.trace(), d.determinant());
             (1.0 - tr + det, 1.0 + tr + det, tr * tr - 4.0 * det)

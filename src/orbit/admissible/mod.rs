@@ -18,7 +18,7 @@ use crate::orbit::structure::Structure;
 
 mod sink;
 
-pub use sink::{Margin, Violation, ViolationKind, SAME_EVENT};
+pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
 use sink::{Except, Only, Sink, Violated, Worst};
 
 /// Tolerance on phases when comparing a simulated event with a switching point.
@@ -372,22 +372,17 @@ pub(crate) fn margin_of<M: Model>(
     only.margin
 }
 
-/// [`worst_margin`] over every condition but `(kind, segment, boundary)`
-/// (whose margin is `value`) and its twin on the same boundary (the force
-/// criterion of the same event, or the contact it is named by; see
-/// [`SAME_EVENT`]): what ends a two-parameter curve of that condition.
+/// [`worst_margin`] over every condition but the `excluded` ones (a
+/// two-parameter curve's own condition and those that vanish with it):
+/// what ends that curve. No text, no allocation.
 pub(crate) fn worst_margin_except<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
     points: &[SwitchingPoint],
-    (kind, segment, boundary): (ViolationKind, usize, Option<usize>),
-    value: f64,
+    excluded: &[ConditionId],
 ) -> Option<Margin> {
     let mut except = Except {
-        kind,
-        segment,
-        boundary,
-        value,
+        excluded,
         worst: Worst::default(),
     };
     walk(sim, structure, points, &mut except);

@@ -203,31 +203,17 @@ impl Sink for Only {
     }
 }
 
+/// A condition's identity: kind, segment, boundary.
+pub type ConditionId = (ViolationKind, usize, Option<usize>);
+
 /// The smallest margin (named as [`Worst`] names it) of every condition but
-/// one (its kind, segment and boundary) and its twin: a condition of the
-/// other class on the same boundary (force criterion against departure,
-/// arrival or interior contact) whose margin is within [`SAME_EVENT`] of
-/// the excluded one's `value` (the same event, SPEC §3).
-pub(super) struct Except {
-    pub(super) kind: ViolationKind,
-    pub(super) segment: usize,
-    pub(super) boundary: Option<usize>,
-    pub(super) value: f64,
+/// the excluded ones.
+pub(super) struct Except<'a> {
+    pub(super) excluded: &'a [ConditionId],
     pub(super) worst: Worst,
 }
 
-fn is_force(kind: ViolationKind) -> bool {
-    matches!(kind, ViolationKind::Pass | ViolationKind::StickOnset)
-}
-
-fn is_contact(kind: ViolationKind) -> bool {
-    matches!(
-        kind,
-        ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure
-    )
-}
-
-impl Sink for Except {
+impl Sink for Except<'_> {
     fn add(
         &mut self,
         segment: usize,
@@ -236,15 +222,7 @@ impl Sink for Except {
         margin: f64,
         text: impl FnOnce() -> String,
     ) {
-        if kind == self.kind && segment == self.segment && boundary == self.boundary {
-            return;
-        }
-        let twin = boundary.is_some()
-            && boundary == self.boundary
-            && ((is_force(kind) && is_contact(self.kind))
-                || (is_contact(kind) && is_force(self.kind)))
-            && (margin - self.value).abs() <= SAME_EVENT * self.value.abs().max(1.0);
-        if !twin {
+        if !self.excluded.contains(&(kind, segment, boundary)) {
             self.worst.add(segment, kind, boundary, margin, text);
         }
     }
