@@ -413,6 +413,12 @@ impl<M: Model> Tracer<'_, M> {
                     }
                     Ok((smp, it))
                 });
+            if std::env::var_os("CURVE_DEBUG").is_some() {
+                match &accepted {
+                    Ok((c, it)) => eprintln!("ds {ds:.3e} it {it} other {:.3e} at {:?}", c.other, &c.x[c.x.len() - 2..]),
+                    Err(e) => eprintln!("ds {ds:.3e} rejected: {e}"),
+                }
+            }
             let (mut cand, iterations) = match accepted {
                 Ok(c) => c,
                 Err(_) if ds > opts.min_step => {

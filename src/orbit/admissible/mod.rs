@@ -400,6 +400,8 @@ fn walk<M: Model>(
     let m = points.len();
     let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
     let label = |k: usize| info.boundaries[k].label;
+    // Each margin as a smooth function of the points: no event search.
+    let smooth = out.smooth();
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
         let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
@@ -541,7 +543,7 @@ fn walk<M: Model>(
                 // the closed form when every margin is clear of zero, else
                 // the event search decides.
                 let event = match &check {
-                    Some(c) if c.arrives => None,
+                    Some(c) if c.arrives || smooth => None,
                     _ => Some(sim.next_event(&seg, b.phase + phase_tol(b.phase))),
                 };
                 let tol = phase_tol(b.phase);

@@ -69,6 +69,15 @@ pub(super) trait Sink {
         margin: f64,
         text: impl FnOnce() -> String,
     );
+
+    /// Whether the margins are wanted as smooth functions of the points
+    /// (a curve's condition): the arrival is taken as the first boundary
+    /// contact without the event search, so that the interior margin is
+    /// always the closed form's, never replaced by the depth of an early
+    /// contact or by a missing arrival.
+    fn smooth(&self) -> bool {
+        false
+    }
 }
 
 impl Sink for Vec<Violation> {
@@ -186,6 +195,10 @@ pub(super) struct Only {
 }
 
 impl Sink for Only {
+    fn smooth(&self) -> bool {
+        true
+    }
+
     fn add(
         &mut self,
         segment: usize,
