@@ -17,6 +17,7 @@
 mod common;
 
 use common::counting::{allocations, Counting};
+use stickslip::bifurcation::bordered::Correction;
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, crossings, system, trace, unknowns, Condition,
     Curve, CurveOptions, CurvePoint, Line, Plane,
@@ -218,16 +219,17 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
     // Other Q0: the branches' ends and bifurcations lie on the curves.
     for q in [40.0, 100.0, 150.0] {
         let mut found = Vec::new();
-        for c in &curves {
+        for (i, c) in curves.iter().enumerate() {
             for x in crossings::<Paper>(&base, &plane, c, Line::Y(q), &CurveOptions::default()) {
                 assert_eq!(x.y, q);
-                found.push((c.kind, x));
+                found.push((i, x));
             }
         }
         let mut matched = 0;
-        for (kind, x) in &found {
+        for (i, x) in &found {
             // The branch of this motion at Q0 = q, from the crossing.
-            let c = curves.iter().find(|c| c.kind == *kind).unwrap();
+            let c = &curves[*i];
+            let kind = c.kind;
             let structure = c.structure.clone().unwrap();
             let mut b = base;
             b.Q0 = q;
@@ -294,6 +296,12 @@ fn coulomb_plane() -> Plane {
 
 /// The fold of the Coulomb oscillator's branch from rest at W = 0.2, Q0 = 1.
 fn coulomb_fold() -> (Structure, CurvePoint) {
+    let (s, p, _) = coulomb_fold_branch();
+    (s, p)
+}
+
+/// The fold and its branch.
+fn coulomb_fold_branch() -> (Structure, CurvePoint, Branch) {
     use stickslip::models::coulomb::Coulomb;
     let (base, plane) = (coulomb_base(), coulomb_plane());
     let b = branch_at::<Coulomb>(&base, &plane, 0.2, 1.0).expect("the branch");
@@ -309,6 +317,7 @@ fn coulomb_fold() -> (Structure, CurvePoint) {
             y: 1.0,
             points: f.at.points.clone(),
         },
+        b.clone(),
     )
 }
 
@@ -316,7 +325,7 @@ fn coulomb_fold() -> (Structure, CurvePoint) {
 fn a_fold_curve_of_the_coulomb_oscillator() {
     use stickslip::models::coulomb::Coulomb;
     let (base, plane) = (coulomb_base(), coulomb_plane());
-    let (structure, start) = coulomb_fold();
+    let (structure, start, one) = coulomb_fold_branch();
     assert!((start.x - 0.219892416).abs() < 1e-8, "{}", start.x);
     let t0 = std::time::Instant::now();
     let c = trace::<Coulomb>(
@@ -350,30 +359,31 @@ fn a_fold_curve_of_the_coulomb_oscillator() {
     // At another Q0, the branch's own fold lies on the curve.
     for q in [0.9, 1.1] {
         let at = crossings::<Coulomb>(&base, &plane, &c, Line::Y(q), &CurveOptions::default());
+        let guess = at.first().expect("a crossing");
+        // The branch at Q0 = q, followed along W from the Q0 = 1 branch's
+        // points a little away from its fold (Newton at that W).
         let mut b = base;
         b.Q0 = q;
-        let guess = at.first().expect("a crossing");
         let o = ContinuationOptions {
             bounds: (plane.x_range[0], plane.x_range[1]),
             ..ContinuationOptions::default()
         };
-        let branch = [2e-3, -2e-3]
+        let branch = one
+            .points
             .iter()
-            .find_map(|dw| {
-                follow::<Coulomb>(
-                    &b,
-                    plane.x,
-                    &Start {
-                        structure: structure.clone(),
-                        value: guess.x + dw,
-                        points: guess.points.clone(),
-                        direction: None,
-                    },
-                    &o,
-                )
-                .ok()
+            .filter(|p| (p.value - start.x).abs() > 0.01 && (p.value - start.x).abs() < 0.05)
+            .find_map(|p| {
+                let s = Start {
+                    structure: structure.clone(),
+                    value: p.value,
+                    points: p.points.clone(),
+                    direction: None,
+                };
+                follow::<Coulomb>(&b, plane.x, &s, &o)
+                    .ok()
+                    .filter(|br| br.bifurcations.iter().any(|f| f.kind == TransitionKind::Fold))
             })
-            .expect("the branch at Q0 = q");
+            .expect("the branch at Q0 = q, with a fold");
         let near = branch
             .bifurcations
             .iter()
@@ -426,33 +436,60 @@ fn the_extended_jacobian_matches_central_differences() {
 #[test]
 fn corrector_step_and_tangent_allocate_nothing() {
     use stickslip::models::coulomb::Coulomb;
+    use stickslip::models::paper::{Paper, Params};
     let (base, plane) = (coulomb_base(), coulomb_plane());
     let (structure, start) = coulomb_fold();
-    for cond in [
-        Condition::Eigen(TransitionKind::Fold),
-        // A margin: its condition walks the motion's segments.
-        condition_at_transition::<Coulomb>(
-            &with(&base, &plane, start.x, start.y),
-            &structure,
-            &start.points,
-            TransitionKind::Grazing,
-        )
-        .expect("a smallest margin"),
-    ] {
-        let mut sys = system::<Coulomb>(&base, &plane, Some(&structure), &start, cond).unwrap();
-        let x0 = unknowns(&start);
-        let n = x0.len();
-        let mut border = vec![0.0; n];
-        border[n - 1] = 1.0;
-        let mut t = vec![0.0; n];
-        let (count, r) = allocations(|| sys.tangent(&x0, &border, &mut t));
-        assert!(r.is_ok(), "{r:?}");
-        assert_eq!(count, 0, "{cond:?}: the tangent allocated {count} times");
-        let mut x: Vec<f64> = x0.iter().zip(&t).map(|(a, d)| a + 1e-6 * d).collect();
-        let anchor = x.clone();
-        let (count, _c) = allocations(|| sys.correct(&mut x, &t, &anchor, 1e-12, 3));
-        assert_eq!(count, 0, "{cond:?}: the corrector allocated {count} times");
-    }
+    let cond = Condition::Eigen(TransitionKind::Fold);
+    let sys = system::<Coulomb>(&base, &plane, Some(&structure), &start, cond).unwrap();
+    check_allocations(sys, &start, "fold");
+    // A margin: its condition walks the motion's segments (a grazing of
+    // the paper model at Q0 = 70).
+    let (pb, pp) = (Params::default(), paper_plane());
+    let (structure, start, cond) = [3.0, 3.5, 4.5, 5.0]
+        .iter()
+        .filter_map(|&w| branch_at::<Paper>(&pb, &pp, w, 70.0))
+        .find_map(|b| {
+            b.ends.iter().find_map(|e| match e.reason {
+                EndReason::Transition { kind, .. } => {
+                    let p = with(&pb, &pp, e.at.value, 70.0);
+                    let c = condition_at_transition::<Paper>(&p, &b.structure, &e.at.points, kind)?;
+                    let start = CurvePoint {
+                        x: e.at.value,
+                        y: 70.0,
+                        points: e.at.points.clone(),
+                    };
+                    Some((b.structure.clone(), start, c))
+                }
+                _ => None,
+            })
+        })
+        .expect("a transition with a condition");
+    let sys = system::<Paper>(&pb, &pp, Some(&structure), &start, cond).unwrap();
+    check_allocations(sys, &start, "margin");
+}
+
+/// A tangent and a corrector step from the curve point `start` (a
+/// transition, on the curve to about 1e-12) allocate nothing.
+fn check_allocations<M: Model>(
+    mut sys: stickslip::bifurcation::curve::Extended<M>,
+    start: &CurvePoint,
+    what: &str,
+) {
+    let x0 = unknowns(start);
+    let n = x0.len();
+    let mut border = vec![0.0; n];
+    sys.axis(1, &mut border);
+    let mut t = vec![0.0; n];
+    let (count, r) = allocations(|| sys.tangent(&x0, &border, &mut t));
+    assert!(r.is_ok(), "{what}: {r:?}");
+    assert_eq!(count, 0, "{what}: the tangent allocated {count} times");
+    let mut x: Vec<f64> = x0.iter().zip(&t).map(|(a, d)| a + 1e-4 * d).collect();
+    let anchor = x.clone();
+    let (count, c) = allocations(|| sys.correct(&mut x, &t, &anchor, 1e-12, 12));
+    assert!(matches!(c, Correction::Converged { .. }), "{what}: {c:?}");
+    assert_eq!(count, 0, "{what}: the corrector allocated {count} times");
+    assert!(sys.mapping_residual(&x) < 1e-10 * sys.length.max(1.0));
+    assert!(sys.distance(&x, &x0) > 1e-5, "{what}: the step moved");
 }
 
 /// The no-motion regime's largest velocity in domain `j` (closed form,
