@@ -19,10 +19,12 @@ mod common;
 use common::counting::{allocations, Counting};
 use stickslip::bifurcation::bordered::Correction;
 use stickslip::bifurcation::curve::{
-    condition_at_transition, condition_scale, crossings, system, trace, unknowns, Condition,
-    Curve, CurveOptions, CurvePoint, Line, Plane,
+    condition_at_transition, condition_scale, crossings, system, trace, unknowns, Condition, Curve,
+    CurveOptions, CurvePoint, Line, Plane,
 };
-use stickslip::bifurcation::{follow, Branch, ContinuationOptions, EndReason, Start, TransitionKind};
+use stickslip::bifurcation::{
+    follow, Branch, ContinuationOptions, EndReason, Start, TransitionKind,
+};
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::orbit::admissible::conditions;
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
@@ -102,7 +104,10 @@ fn curves_of<M: Model>(base: &M::Params, plane: &Plane, branch: &Branch, q: f64)
         let p = with(base, plane, at.value, q);
         let Some(cond) = condition_at_transition::<M>(&p, &branch.structure, &at.points, kind)
         else {
-            eprintln!("no condition for {kind:?} at W = {} (a vanishing segment)", at.value);
+            eprintln!(
+                "no condition for {kind:?} at W = {} (a vanishing segment)",
+                at.value
+            );
             continue;
         };
         let start = CurvePoint {
@@ -136,7 +141,10 @@ fn worst_on_curve<M: Model>(base: &M::Params, plane: &Plane, c: &Curve) -> f64 {
         if !t.converged() {
             pts = q.points.clone();
             let r = solver.residual(&p, &pts);
-            assert!(r <= 1e-10 * l * w.max(1.0), "residual {r:e} at {q:?}: {t:?}");
+            assert!(
+                r <= 1e-10 * l * w.max(1.0),
+                "residual {r:e} at {q:?}: {t:?}"
+            );
         }
         let scale = condition_scale::<M>(&p, c.condition, structure, &pts);
         let g = match c.condition {
@@ -188,7 +196,9 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
     let plane = paper_plane();
     let mut curves: Vec<Curve> = Vec::new();
     let mut seen: Vec<Structure> = Vec::new();
-    for w in [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 3.9, 4.5, 5.0, 5.5, 6.5, 7.5] {
+    for w in [
+        0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 3.9, 4.5, 5.0, 5.5, 6.5, 7.5,
+    ] {
         let Some(b) = branch_at::<Paper>(&base, &plane, w, 70.0) else {
             continue;
         };
@@ -264,7 +274,11 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
                 .fold(f64::INFINITY, f64::min);
             eprintln!("Q0 = {q}: {kind:?} at W = {} (branch: {near:e})", x.x);
             if near.is_finite() {
-                assert!(near <= 1e-8, "{kind:?} at Q0 = {q}: W = {} is {near:e} from the branch's", x.x);
+                assert!(
+                    near <= 1e-8,
+                    "{kind:?} at Q0 = {q}: W = {} is {near:e} from the branch's",
+                    x.x
+                );
                 matched += 1;
             }
         }
@@ -379,9 +393,11 @@ fn a_fold_curve_of_the_coulomb_oscillator() {
                     points: p.points.clone(),
                     direction: None,
                 };
-                follow::<Coulomb>(&b, plane.x, &s, &o)
-                    .ok()
-                    .filter(|br| br.bifurcations.iter().any(|f| f.kind == TransitionKind::Fold))
+                follow::<Coulomb>(&b, plane.x, &s, &o).ok().filter(|br| {
+                    br.bifurcations
+                        .iter()
+                        .any(|f| f.kind == TransitionKind::Fold)
+                })
             })
             .expect("the branch at Q0 = q, with a fold");
         let near = branch
@@ -555,6 +571,85 @@ fn the_rest_grazing_curve_is_the_closed_form() {
     for q in &c.points {
         let p = with(&base, &plane, q.x, q.y);
         let g = Paper::boundary_velocity(&p, k) - rest_max_v::<Paper>(&p, j);
-        assert!(g.abs() <= 1e-10 * Paper::boundary_velocity(&p, k).abs(), "{g:e} at {q:?}");
+        assert!(
+            g.abs() <= 1e-10 * Paper::boundary_velocity(&p, k).abs(),
+            "{g:e} at {q:?}"
+        );
+    }
+}
+
+#[test]
+fn a_period_doubling_curve_of_the_paper_model() {
+    use stickslip::models::paper::{Paper, Params};
+    // Issue 11's period doubling of P_{3_33 4_33} (Q0 = 100, mu3 = 3, W ≈ 10.8).
+    let base = Params {
+        mu3: 3.0,
+        ..Params::default()
+    };
+    let plane = Plane {
+        x_range: [10.0, 12.0],
+        y_range: [80.0, 120.0],
+        ..paper_plane()
+    };
+    let b = branch_at::<Paper>(&base, &plane, 10.75, 100.0).expect("the branch");
+    let pd = b
+        .bifurcations
+        .iter()
+        .find(|f| f.kind == TransitionKind::PeriodDoubling)
+        .expect("a period doubling");
+    let start = CurvePoint {
+        x: pd.at.value,
+        y: 100.0,
+        points: pd.at.points.clone(),
+    };
+    let p = with(&base, &plane, start.x, start.y);
+    let cond = condition_at_transition::<Paper>(&p, &b.structure, &start.points, pd.kind)
+        .expect("a condition");
+    assert_eq!(cond, Condition::Eigen(TransitionKind::PeriodDoubling));
+    let t0 = std::time::Instant::now();
+    let c = trace::<Paper>(
+        &base,
+        &plane,
+        Some(&b.structure),
+        &start,
+        cond,
+        &CurveOptions::default(),
+    )
+    .expect("the curve");
+    eprintln!("{} in {:?}", describe(&c), t0.elapsed());
+    assert!(c.points.len() >= 5);
+    let worst = worst_on_curve::<Paper>(&base, &plane, &c);
+    assert!(worst <= 1e-10, "|det(I + DP)| / scale = {worst:e}");
+    for q in [90.0, 110.0] {
+        let at = crossings::<Paper>(&base, &plane, &c, Line::Y(q), &CurveOptions::default());
+        let mut bq = base;
+        bq.Q0 = q;
+        let o = ContinuationOptions {
+            bounds: (plane.x_range[0], plane.x_range[1]),
+            ..ContinuationOptions::default()
+        };
+        let Some(x) = at.first() else {
+            continue;
+        };
+        let branch = [1e-2, -1e-2]
+            .iter()
+            .find_map(|dw| {
+                let s = Start {
+                    structure: b.structure.clone(),
+                    value: x.x + dw,
+                    points: x.points.clone(),
+                    direction: None,
+                };
+                follow::<Paper>(&bq, plane.x, &s, &o).ok()
+            })
+            .expect("the branch at Q0 = q");
+        let near = branch
+            .bifurcations
+            .iter()
+            .filter(|f| f.kind == TransitionKind::PeriodDoubling)
+            .map(|f| (f.at.value - x.x).abs())
+            .fold(f64::INFINITY, f64::min);
+        eprintln!("Q0 = {q}: PD at W = {} ({near:e} from the branch's)", x.x);
+        assert!(near <= 1e-8, "Q0 = {q}: {near:e}");
     }
 }
