@@ -222,10 +222,30 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
     let kinds: Vec<TransitionKind> = curves.iter().map(|c| c.kind).collect();
     assert!(curves.len() >= 3, "{kinds:?}");
     assert!(kinds.iter().any(|k| !k.is_eigenvalue()));
+    let mut specials = 0;
     for c in &curves {
         let worst = worst_on_curve::<Paper>(&base, &plane, c);
         assert!(worst <= 1e-10, "{}: |g| / scale = {worst:e}", describe(c));
+        // A fold or period-doubling curve met on the way: its test function
+        // vanishes there too (DP by the public solver).
+        for sp in &c.special {
+            let p = with(&base, &plane, sp.at.x, sp.at.y);
+            let s = c.structure.clone().unwrap();
+            let dp = PeriodicSolver::<Paper>::new(s)
+                .poincare_jacobian(&p, &sp.at.points)
+                .expect("DP");
+            let e = nalgebra::Matrix2::identity();
+            let psi = match sp.kind {
+                TransitionKind::PeriodDoubling => (e + dp).determinant(),
+                _ => (e - dp).determinant(),
+            };
+            let scale = 1.0 + dp.trace().abs() + dp.determinant().abs();
+            assert!(psi.abs() <= 1e-8 * scale, "{:?} at {:?}: {psi:e}", sp.kind, sp.at);
+            assert!(sp.index + 1 < c.points.len());
+            specials += 1;
+        }
     }
+    eprintln!("{specials} special points");
     // Other Q0: the branches' ends and bifurcations lie on the curves.
     for q in [40.0, 100.0, 150.0] {
         let mut found = Vec::new();

@@ -342,8 +342,8 @@ impl<M: Model> Extended<M> {
     fn solve(&mut self, border: &[f64], rhs: f64) -> Result<(), String> {
         let n = self.n;
         let last = (n - 1) * n;
-        for i in 0..n {
-            self.jac[last + i] = self.metric[i] * border[i];
+        for ((j, w), b) in self.jac[last..].iter_mut().zip(&self.metric).zip(border) {
+            *j = w * b;
         }
         self.rhs[n - 1] = rhs;
         for i in 0..n {
@@ -436,17 +436,16 @@ impl<M: Model> Extended<M> {
                 return Correction::Failed(why);
             }
             let mut size = 0.0f64;
-            for i in 0..n {
-                let d = self.delta[i];
+            for (i, (xi, &d)) in x.iter_mut().zip(&self.delta).enumerate() {
                 let v = if i >= 2 * self.m {
                     d.abs() / self.spans[i + 2 - n]
                 } else if i % 2 == 0 {
                     d.abs() / self.length
                 } else {
-                    d.abs() / (ulps * x[i].abs()).max(1.0)
+                    d.abs() / (ulps * xi.abs()).max(1.0)
                 };
                 size = size.max(v);
-                x[i] += d;
+                *xi += d;
             }
             if size.is_nan() {
                 return Correction::Failed("the Newton step is not finite".into());

@@ -307,7 +307,8 @@ impl<M: Model> Tracer<'_, M> {
             Condition::Eigen(TransitionKind::NeimarkSacker)
         );
         // The pair of a Neimark–Sacker curve turns real: a 1:1 or 1:2 resonance.
-        let turns_real = ns && prev.disc < 0.0 && !(cand.disc < 0.0);
+        let turns_real =
+            ns && prev.disc < 0.0 && cand.disc.partial_cmp(&0.0) != Some(std::cmp::Ordering::Less);
         let lost = cand.other.is_nan() || cand.other <= 0.0;
         if lost {
             let (good, bad) = self.locate(prev, s_c, cand.other, |s| s.other);
