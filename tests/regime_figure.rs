@@ -364,40 +364,49 @@ fn regions_of_the_paper_model_carry_the_labels_of_a_map_at_their_samples() {
     }
 }
 
-#[test]
-fn walls_and_tiny_components_take_the_nearest_region_deterministically() {
-    let s = synthetic_set([0.0, 1.0], [0.0, 1.0]);
-    let cut = partition(&s, 60, 40);
-    let name = |p: [f64; 2]| {
-        format!(
-            "P_{{{:.0} {:.0}}}",
-            (p[0] * 4.0).floor(),
-            (p[1] * 4.0).floor()
-        )
+/// Which side of each curve of [`synthetic_set`] on the unit box `p` lies:
+/// above the grazing line, right of the stick-onset line, inside the circle.
+fn side(s: &CurveSet, p: [f64; 2]) -> String {
+    let along = |poly: &[[f64; 2]], i: usize, t: f64| {
+        let w = poly
+            .windows(2)
+            .find(|w| (w[0][i].min(w[1][i])..=w[0][i].max(w[1][i])).contains(&t))
+            .unwrap();
+        let f = (t - w[0][i]) / (w[1][i] - w[0][i]);
+        w[0][1 - i] + f * (w[1][1 - i] - w[0][1 - i])
     };
-    let a = classify_partition(&cut, name);
-    let b = classify_partition(&cut, name);
-    assert_eq!(a, b);
-    // Every cell's region has a sample at least as near as any other
-    // region's component cell: the nearest classified cell (in 8-step
-    // distance) is of its region.
-    let nx = 60i64;
-    let classified: Vec<(usize, usize)> = (0..cut.wall.len())
-        .filter_map(|i| {
-            let c = cut.component[i]?;
-            (cut.components[c].cells >= min_cells(60, 40)).then(|| (i, a.cells[i]))
-        })
-        .collect();
-    for i in 0..cut.wall.len() {
-        let (x, y) = (i as i64 % nx, i as i64 / nx);
-        let d = |j: usize| (j as i64 % nx - x).abs().max((j as i64 / nx - y).abs());
-        let nearest = classified.iter().map(|&(j, _)| d(j)).min().unwrap();
-        let mine = classified
-            .iter()
-            .filter(|&&(_, k)| k == a.cells[i])
-            .map(|&(j, _)| d(j))
-            .min();
-        assert_eq!(mine, Some(nearest), "cell {i}");
+    let above = p[1] > along(&s.curves[0].points, 0, p[0]);
+    let right = p[0] > along(&s.curves[1].points, 1, p[1]);
+    let within = inside(&s.curves[2].points, p);
+    format!("{above}{right}{within}")
+}
+
+#[test]
+fn walls_and_tiny_components_take_the_region_on_their_side() {
+    let s = synthetic_set([0.0, 1.0], [0.0, 1.0]);
+    for (nx, ny) in [(60, 40), (37, 53), (200, 150)] {
+        let cut = partition(&s, nx, ny);
+        let a = classify_partition(&cut, |p| side(&s, p));
+        assert_eq!(
+            a,
+            classify_partition(&cut, |p| side(&s, p)),
+            "deterministic"
+        );
+        assert_eq!(a.regions.len(), 5);
+        // Every cell, wall or not, is coloured by the side its centre lies
+        // on; only cells right by the crossing may be shut in between the
+        // curves and take a neighbour's region.
+        let mut wrong = 0;
+        for i in 0..cut.wall.len() {
+            let c = cut.raster.centre(i);
+            if a.regions[a.cells[i]].label != side(&s, c) {
+                let near = (c[0] - 0.45).hypot(c[1] - 0.5) < 2.0 / nx.min(ny) as f64;
+                assert!(near, "{nx}×{ny}: cell {i} at {c:?}");
+                wrong += 1;
+            }
+        }
+        assert!(wrong <= 2, "{wrong}");
+        assert!(cut.wall.iter().filter(|&&w| w).count() > nx + ny);
     }
 }
 

@@ -14,14 +14,13 @@
 pub mod raster;
 
 use rayon::prelude::*;
-use std::collections::VecDeque;
 
 use crate::model::Model;
 use crate::study::map::{classify_point, GridAxis};
 
 use super::CurveSet;
 
-pub use raster::{partition, Component, Partition, Raster};
+pub use raster::{crosses, partition, Component, Partition, Raster};
 
 /// One region of the plane.
 #[derive(Clone, Debug, PartialEq)]
@@ -87,8 +86,11 @@ pub fn regions<M: Model>(base: &M::Params, set: &CurveSet, nx: usize, ny: usize)
 /// of at least [`min_cells`] cells (in parallel; the result does not depend
 /// on the order), the largest component should none be that large, the
 /// box's centre should there be no cell free of walls. Every other cell
-/// takes the region of the nearest classified cell (breadth first, 8
-/// neighbours; ties to the region of lower index).
+/// takes the region of the nearest classified cell that it reaches without
+/// crossing a curve (centre to centre, breadth first over 4 neighbours):
+/// a wall cell the region on its centre's side. Cells that no region
+/// reaches so (shut in between curves) take the nearest region across them
+/// (8 neighbours). Ties go to the region of lower index.
 pub fn classify_partition(
     cut: &Partition,
     classify: impl Fn([f64; 2]) -> String + Sync,
@@ -127,54 +129,90 @@ pub fn classify_partition(
     for (k, &c) in chosen.iter().enumerate() {
         region_of[c] = k;
     }
-    let mut queue = VecDeque::new();
+    let mut seeds = Vec::new();
     for (i, c) in cut.component.iter().enumerate() {
         if let Some(&k) = c.and_then(|c| region_of.get(c)).filter(|&&k| k != NONE) {
             cells[i] = k;
-            queue.push_back(i);
+            seeds.push(i);
         }
     }
-    if queue.is_empty() {
+    if seeds.is_empty() {
         cells[samples[0]] = 0;
-        queue.push_back(samples[0]);
+        seeds.push(samples[0]);
     }
-    // Grow the classified cells over the rest, nearest first; of two
-    // regions reaching a cell in the same step, the lower index wins.
-    while !queue.is_empty() {
-        let mut next: Vec<(usize, usize)> = Vec::new();
-        for i in queue.drain(..) {
-            let (ix, iy) = ((i % nx) as i64, (i / nx) as i64);
-            for (dx, dy) in [
-                (-1, 0),
-                (1, 0),
-                (0, -1),
-                (0, 1),
-                (-1, -1),
-                (1, -1),
-                (-1, 1),
-                (1, 1),
-            ] {
-                let (jx, jy) = (ix + dx, iy + dy);
-                if jx < 0 || jy < 0 || jx >= nx as i64 || jy >= ny as i64 {
-                    continue;
-                }
-                let j = jy as usize * nx + jx as usize;
-                if cells[j] == NONE {
-                    next.push((j, cells[i]));
-                }
-            }
-        }
-        next.sort_unstable();
-        next.dedup_by_key(|(j, _)| *j);
-        for &(j, k) in &next {
-            cells[j] = k;
-            queue.push_back(j);
-        }
-    }
+    // First across cell edges that no curve crosses (centre to centre), so
+    // that a wall cell takes the region on its centre's side of the curve;
+    // then, for cells cut off between curves, across anything.
+    let open = |i: usize, j: usize| {
+        let line = [cell_units(nx, i), cell_units(nx, j)];
+        !cut.segments[i]
+            .iter()
+            .chain(&cut.segments[j])
+            .any(|&s| crosses(line, s))
+    };
+    let fours = [(-1, 0), (1, 0), (0, -1), (0, 1)];
+    let reached = grow(&mut cells, seeds, nx, ny, &fours, open);
+    let eights = [
+        (-1, 0),
+        (1, 0),
+        (0, -1),
+        (0, 1),
+        (-1, -1),
+        (1, -1),
+        (-1, 1),
+        (1, 1),
+    ];
+    grow(&mut cells, reached, nx, ny, &eights, |_, _| true);
     Regions {
         nx,
         ny,
         cells,
         regions,
     }
+}
+
+/// The centre of cell `i` in cell units.
+fn cell_units(nx: usize, i: usize) -> [f64; 2] {
+    [(i % nx) as f64 + 0.5, (i / nx) as f64 + 0.5]
+}
+
+/// Grow the regions of `cells` (`usize::MAX`: none yet) from `seeds`, nearest
+/// first, to every neighbour (`steps`) reachable through `open` edges; of two
+/// regions reaching a cell in the same step the lower index wins. Returns
+/// every cell that has a region.
+fn grow(
+    cells: &mut [usize],
+    seeds: Vec<usize>,
+    nx: usize,
+    ny: usize,
+    steps: &[(i64, i64)],
+    open: impl Fn(usize, usize) -> bool,
+) -> Vec<usize> {
+    let mut all = seeds.clone();
+    let mut front = seeds;
+    while !front.is_empty() {
+        let mut next: Vec<(usize, usize)> = Vec::new();
+        for &i in &front {
+            let (ix, iy) = ((i % nx) as i64, (i / nx) as i64);
+            for &(dx, dy) in steps {
+                let (jx, jy) = (ix + dx, iy + dy);
+                if jx < 0 || jy < 0 || jx >= nx as i64 || jy >= ny as i64 {
+                    continue;
+                }
+                let j = jy as usize * nx + jx as usize;
+                if cells[j] == usize::MAX && open(i, j) {
+                    next.push((j, cells[i]));
+                }
+            }
+        }
+        next.sort_unstable();
+        next.dedup_by_key(|(j, _)| *j);
+        front.clear();
+        for &(j, k) in &next {
+            cells[j] = k;
+            front.push(j);
+        }
+        all.extend_from_slice(&front);
+    }
+    all
 }

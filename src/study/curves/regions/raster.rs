@@ -70,6 +70,9 @@ pub struct Partition {
     pub raster: Raster,
     /// `wall[iy * nx + ix]`: a curve passes through the cell.
     pub wall: Vec<bool>,
+    /// The pieces of curve segments through each cell, in cell units
+    /// (empty for a cell that is no wall).
+    pub segments: Vec<Vec<[[f64; 2]; 2]>>,
     /// The component of each cell that is not a wall.
     pub component: Vec<Option<usize>>,
     /// The components, in the order of their lowest cell index.
@@ -79,7 +82,8 @@ pub struct Partition {
 /// Cut `set`'s box, rasterized on `nx × ny` cells, by every curve of `set`.
 pub fn partition(set: &CurveSet, nx: usize, ny: usize) -> Partition {
     let raster = Raster::of(set, nx, ny);
-    let wall = walls(set, &raster);
+    let segments = walls(set, &raster);
+    let wall: Vec<bool> = segments.iter().map(|s| !s.is_empty()).collect();
     let (component, mut components) = components(&wall, raster.nx, raster.ny);
     let depth2 = depth2(&wall, raster.nx, raster.ny);
     for (i, c) in component.iter().enumerate() {
@@ -97,14 +101,16 @@ pub fn partition(set: &CurveSet, nx: usize, ny: usize) -> Partition {
     Partition {
         raster,
         wall,
+        segments,
         component,
         components,
     }
 }
 
-/// The wall cells: every cell that a segment of a curve passes through.
-pub fn walls(set: &CurveSet, raster: &Raster) -> Vec<bool> {
-    let mut wall = vec![false; raster.nx * raster.ny];
+/// The wall cells: for every cell, the segments of curves (clipped to the
+/// box, in cell units) that pass through it.
+pub fn walls(set: &CurveSet, raster: &Raster) -> Vec<Vec<[[f64; 2]; 2]>> {
+    let mut wall = vec![Vec::new(); raster.nx * raster.ny];
     for curve in &set.curves {
         let points: Vec<[f64; 2]> = curve
             .points
@@ -154,7 +160,7 @@ pub fn clip(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> Option<([f6
 /// Mark every cell that the segment `a`–`b` (cell units) passes through: a
 /// grid traversal (Amanatides–Woo) that steps one axis at a time, so the
 /// marked cells form a 4-connected chain from `a`'s cell to `b`'s.
-fn mark_segment(wall: &mut [bool], raster: &Raster, a: [f64; 2], b: [f64; 2]) {
+fn mark_segment(wall: &mut [Vec<[[f64; 2]; 2]>], raster: &Raster, a: [f64; 2], b: [f64; 2]) {
     let (nx, ny) = (raster.nx, raster.ny);
     let Some((a, b)) = clip(a, b, [0.0; 2], [nx as f64, ny as f64]) else {
         return;
@@ -179,7 +185,7 @@ fn mark_segment(wall: &mut [bool], raster: &Raster, a: [f64; 2], b: [f64; 2]) {
     // Exactly the steps that lead from the first cell to the last: rounding
     // can never make the chain miss its end.
     let (mut left_x, mut left_y) = (ix.abs_diff(ex), iy.abs_diff(ey));
-    wall[iy * nx + ix] = true;
+    wall[iy * nx + ix].push([a, b]);
     while left_x + left_y > 0 {
         if left_y == 0 || (left_x > 0 && tx <= ty) {
             ix = if ex > ix { ix + 1 } else { ix - 1 };
@@ -190,7 +196,7 @@ fn mark_segment(wall: &mut [bool], raster: &Raster, a: [f64; 2], b: [f64; 2]) {
             ty += sy;
             left_y -= 1;
         }
-        wall[iy * nx + ix] = true;
+        wall[iy * nx + ix].push([a, b]);
     }
 }
 
@@ -270,6 +276,27 @@ fn depth2(wall: &[bool], nx: usize, ny: usize) -> Vec<i64> {
         inner.extend_from_slice(&f[iy * w + 1..iy * w + 1 + nx]);
     }
     inner
+}
+
+/// Whether the segments `p`–`q` and `a`–`b` meet (touching counts).
+pub fn crosses([p, q]: [[f64; 2]; 2], [a, b]: [[f64; 2]; 2]) -> bool {
+    let side = |o: [f64; 2], u: [f64; 2], v: [f64; 2]| {
+        (u[0] - o[0]) * (v[1] - o[1]) - (u[1] - o[1]) * (v[0] - o[0])
+    };
+    let (d1, d2) = (side(a, b, p), side(a, b, q));
+    let (d3, d4) = (side(p, q, a), side(p, q, b));
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+        return true;
+    }
+    // Collinear or touching: an end of one on the other.
+    let on = |o: [f64; 2], u: [f64; 2], r: [f64; 2], d: f64| {
+        d == 0.0
+            && r[0] >= o[0].min(u[0])
+            && r[0] <= o[0].max(u[0])
+            && r[1] >= o[1].min(u[1])
+            && r[1] <= o[1].max(u[1])
+    };
+    on(a, b, p, d1) || on(a, b, q, d2) || on(p, q, a, d3) || on(p, q, b, d4)
 }
 
 /// One dimension of the distance transform: `out[q] = min_p (q - p)² + f[p]`.
