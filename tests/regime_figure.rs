@@ -614,3 +614,56 @@ fn a_map_with_curves_is_drawn() {
     draw_map_with_curves(&map, None, &dir().join("map_plain.svg")).unwrap();
     assert_eq!(marks(&dir().join("map_plain.svg")).len(), 0);
 }
+
+/// The cost of a 400 × 300 raster with twelve regions on the paper's model:
+/// `cargo test --test regime_figure -- --ignored --nocapture timing`.
+#[test]
+#[ignore = "a measurement, not a check"]
+fn timing_of_a_400_by_300_raster() {
+    let (x, y) = ([0.2, 8.0], [0.0, 180.0]);
+    let at = |u: f64, v: f64| [x[0] + u * (x[1] - x[0]), y[0] + v * (y[1] - y[0])];
+    let mut curves = Vec::new();
+    for v in [0.25, 0.5, 0.75] {
+        curves.push(curve(
+            TransitionKind::Grazing,
+            (0..=20)
+                .map(|k| {
+                    let u = k as f64 / 20.0;
+                    at(u, v + 0.05 * (6.0 * u).sin())
+                })
+                .collect(),
+        ));
+    }
+    for u in [0.3, 0.65] {
+        curves.push(curve(
+            TransitionKind::Fold,
+            (0..=20)
+                .map(|k| {
+                    let v = k as f64 / 20.0;
+                    at(u + 0.04 * (5.0 * v).cos(), v)
+                })
+                .collect(),
+        ));
+    }
+    let s = set(x, y, curves);
+    let t = std::time::Instant::now();
+    let cut = partition(&s, 400, 300);
+    let raster = t.elapsed();
+    let t = std::time::Instant::now();
+    let r = regions::<Paper>(&Params::default(), &s, 400, 300);
+    let all = t.elapsed();
+    let t = std::time::Instant::now();
+    let _ = classify_partition(&cut, |p| side(&synthetic_set(x, y), p));
+    let cheap = t.elapsed();
+    println!(
+        "400 × 300, {} components, {} regions: partition {raster:?}, regions (partition + classification) {all:?}, regions with a free classifier {cheap:?}, threads {}",
+        cut.components.len(),
+        r.regions.len(),
+        rayon::current_num_threads()
+    );
+    for (k, g) in r.regions.iter().enumerate() {
+        println!("{}: {:?} {}", k + 1, g.sample, g.label);
+    }
+    let png = dir().join("timing.png");
+    plot_regimes(&s, &r, "paper: 400 × 300 raster, synthetic curves", &png).unwrap();
+}
