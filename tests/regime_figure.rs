@@ -550,6 +550,52 @@ fn bad_regions_give_an_error() {
     assert!(RegimeFigure::new(&s, &r, "x").is_err());
     r.cells.push(99);
     assert!(RegimeFigure::new(&s, &r, "x").is_err());
+    r.cells.pop();
+    r.cells.push(0);
+    assert!(RegimeFigure::new(&s, &r, "x").is_ok());
+    let mut flat = s.clone();
+    flat.y.1 = [2.0, 2.0];
+    let e = RegimeFigure::new(&flat, &r, "x").err().unwrap();
+    assert!(e.contains("Q0"), "{e}");
+    // A degenerate box or a raster of no cells: no panic, one region.
+    let cut = partition(&flat, 0, 5);
+    assert_eq!(
+        (cut.raster.nx, cut.wall.iter().filter(|&&w| w).count()),
+        (1, 0)
+    );
+    assert_eq!(
+        classify_partition(&cut, |_| "NM".to_string()).regions.len(),
+        1
+    );
+}
+
+#[test]
+fn a_point_that_is_not_finite_breaks_a_curve() {
+    // Two pieces of a horizontal line with a gap where a NaN point sits:
+    // nothing bridges the gap, so the box stays one component.
+    let line = vec![
+        [0.0, 50.0],
+        [4.0, 50.0],
+        [f64::NAN, 50.0],
+        [6.0, 50.0],
+        [10.0, 50.0],
+    ];
+    let s = set(
+        [0.0, 10.0],
+        [0.0, 100.0],
+        vec![curve(TransitionKind::Grazing, line)],
+    );
+    let cut = partition(&s, 20, 20);
+    assert_eq!(cut.components.len(), 1);
+    let whole = set(
+        [0.0, 10.0],
+        [0.0, 100.0],
+        vec![curve(
+            TransitionKind::Grazing,
+            vec![[0.0, 50.0], [10.0, 50.0]],
+        )],
+    );
+    assert_eq!(partition(&whole, 20, 20).components.len(), 2);
 }
 
 fn map_file(name: &str, nx: usize, ny: usize) -> PathBuf {

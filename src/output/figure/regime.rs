@@ -216,6 +216,13 @@ impl<'a> RegimeFigure<'a> {
                 regions.cells.len()
             ));
         }
+        for (name, [a, b]) in [&set.x, &set.y] {
+            if !(a.is_finite() && b.is_finite() && a != b) {
+                return Err(format!(
+                    "the range of {name} is empty or not finite: {a} to {b}"
+                ));
+            }
+        }
         if let Some(c) = regions.cells.iter().find(|&&c| c >= regions.regions.len()) {
             return Err(format!(
                 "a cell of the regions names region {c} of {}",

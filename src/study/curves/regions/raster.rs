@@ -112,16 +112,16 @@ pub fn partition(set: &CurveSet, nx: usize, ny: usize) -> Partition {
 pub fn walls(set: &CurveSet, raster: &Raster) -> Vec<Vec<[[f64; 2]; 2]>> {
     let mut wall = vec![Vec::new(); raster.nx * raster.ny];
     for curve in &set.curves {
-        let points: Vec<[f64; 2]> = curve
-            .points
-            .iter()
-            .filter_map(|&p| raster.cell_units(p))
-            .collect();
-        if let [p] = points[..] {
+        // A point that is not finite breaks the line.
+        let points: Vec<Option<[f64; 2]>> =
+            curve.points.iter().map(|&p| raster.cell_units(p)).collect();
+        if let [Some(p)] = points[..] {
             mark_segment(&mut wall, raster, p, p);
         }
         for w in points.windows(2) {
-            mark_segment(&mut wall, raster, w[0], w[1]);
+            if let [Some(a), Some(b)] = w {
+                mark_segment(&mut wall, raster, *a, *b);
+            }
         }
     }
     wall
