@@ -3,7 +3,8 @@
 //! borders between neighbouring cells with different sets, and a legend of
 //! the sets with their number of points, every name in full (wrapped to the
 //! legend's column; the image grows downwards when the legend needs it).
-//! Points not (yet) computed are hatched grey.
+//! Points not (yet) computed are hatched grey. The exact transition curves
+//! of a curves run may be drawn over the cells ([`draw_map_with_curves`]).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -13,7 +14,9 @@ use std::path::Path;
 use super::layout::Rect;
 use super::legend::{Entry, Legend, LegendLayout, Mark};
 use super::palette::category;
+use super::regime::{curve_legend, draw_curves};
 use super::{save, DrawError, Figure, FAMILY, TITLE_SIZE};
+use crate::study::curves::CurveSet;
 use crate::study::map::{MapError, MapFile, PointResult};
 
 const WIDTH: u32 = 1500;
@@ -25,6 +28,8 @@ const LEGEND_ORIGIN: (i32, i32) = ((WIDTH - LEGEND_WIDTH) as i32 + 10, 76);
 /// Sets listed one by one; the rest are summed on one line.
 const MAX_ENTRIES: usize = 60;
 const NOT_COMPUTED: &str = "not computed";
+/// Pixels between the legend of the sets and that of the curves.
+const KEY_GAP: i32 = 16;
 
 /// Labels with a fixed colour: no motion, and points without a motion found.
 fn is_special(label: &str) -> bool {
@@ -66,7 +71,23 @@ pub fn plot_map(file: &Path, out: &Path) -> Result<(), MapError> {
 
 /// Draw `map` into `out` (`.svg` or `.png`).
 pub fn draw_map(map: &MapFile, out: &Path) -> Result<(), MapError> {
-    save(&MapFigure::new(map), out).map_err(MapError::Plot)
+    draw_map_with_curves(map, None, out)
+}
+
+/// Draw `map` into `out` (`.svg` or `.png`) with the exact transition
+/// curves of `curves`, if given, over its cells: solid or dashed by kind as
+/// on the regime map ([`super::regime::curve_style`]), codimension-two
+/// points marked, the kinds listed under the legend.
+pub fn draw_map_with_curves(
+    map: &MapFile,
+    curves: Option<&CurveSet>,
+    out: &Path,
+) -> Result<(), MapError> {
+    let figure = match curves {
+        Some(set) => MapFigure::with_curves(map, set).map_err(MapError::Plot)?,
+        None => MapFigure::new(map),
+    };
+    save(&figure, out).map_err(MapError::Plot)
 }
 
 /// The figure of a map.
@@ -78,6 +99,16 @@ pub struct MapFigure<'a> {
     labels: Vec<String>,
     colours: HashMap<String, RGBColor>,
     legend: (Legend, LegendLayout),
+    /// Curves drawn over the cells, if any.
+    curves: Option<Curves<'a>>,
+}
+
+/// Curves over a map: the set, whether its `x` is the map's `y`, and the
+/// legend of their kinds.
+struct Curves<'a> {
+    set: &'a CurveSet,
+    swap: bool,
+    key: Option<(Legend, LegendLayout)>,
 }
 
 impl<'a> MapFigure<'a> {
@@ -102,19 +133,8 @@ impl<'a> MapFigure<'a> {
         }
         let mut order: Vec<(&str, usize)> = counts.into_iter().collect();
         order.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(b.0)));
-        // Palette colours by rank among the motion sets (the fixed colours
-        // of NM, invalid, … take no rank).
-        let mut rank = 0;
-        let colours: HashMap<String, RGBColor> = order
-            .iter()
-            .map(|(l, _)| {
-                let c = colour_of(l, rank);
-                if !is_special(l) {
-                    rank += 1;
-                }
-                (l.to_string(), c)
-            })
-            .collect();
+        let names: Vec<&str> = order.iter().map(|(l, _)| *l).collect();
+        let colours = set_colours(&names);
         let legend = legend(&order, &colours);
         let layout = legend.layout(LEGEND_WIDTH as i32 - 20);
         Self {
@@ -123,8 +143,64 @@ impl<'a> MapFigure<'a> {
             labels,
             colours,
             legend: (legend, layout),
+            curves: None,
         }
     }
+
+    /// The figure of `map` with the curves of `curves` drawn over the cells
+    /// (and their kinds listed under the legend). An error when the curves
+    /// are not over the map's two parameters (in either order).
+    pub fn with_curves(map: &'a MapFile, curves: &'a CurveSet) -> Result<Self, String> {
+        let h = &map.header;
+        let (mx, my) = (h.x.name.as_str(), h.y.name.as_str());
+        let (cx, cy) = (curves.x.0.as_str(), curves.y.0.as_str());
+        let swap = if (cx, cy) == (mx, my) {
+            false
+        } else if (cx, cy) == (my, mx) {
+            true
+        } else {
+            return Err(format!(
+                "the curves are over ({cx}, {cy}), the map over ({mx}, {my})"
+            ));
+        };
+        let mut figure = Self::new(map);
+        let key = curve_legend(curves).map(|l| {
+            let layout = l.layout(LEGEND_WIDTH as i32 - 20);
+            (l, layout)
+        });
+        figure.curves = Some(Curves {
+            set: curves,
+            swap,
+            key,
+        });
+        Ok(figure)
+    }
+
+    /// Where the curves' legend goes (under the sets'), pixels of the image.
+    fn key_origin(&self) -> (i32, i32) {
+        (
+            LEGEND_ORIGIN.0,
+            LEGEND_ORIGIN.1 + self.legend.1.bounds.y1 + KEY_GAP,
+        )
+    }
+}
+
+/// The colours of the sets of motions `labels`, in their order: the
+/// palette by rank among the motion sets (the fixed colours of `NM`,
+/// `invalid`, … take no rank). The map's figure ranks its sets by points,
+/// the regime figure by area.
+pub fn set_colours(labels: &[&str]) -> HashMap<String, RGBColor> {
+    let mut rank = 0;
+    labels
+        .iter()
+        .map(|l| {
+            let c = colour_of(l, rank);
+            if !is_special(l) {
+                rank += 1;
+            }
+            (l.to_string(), c)
+        })
+        .collect()
 }
 
 /// The legend of the sets `order` (label, points): the first
@@ -159,7 +235,10 @@ fn legend(order: &[(&str, usize)], colours: &HashMap<String, RGBColor>) -> Legen
 
 impl Figure for MapFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let bottom = LEGEND_ORIGIN.1 + self.legend.1.bounds.y1 + 16;
+        let mut bottom = LEGEND_ORIGIN.1 + self.legend.1.bounds.y1 + 16;
+        if let Some((_, layout)) = self.curves.as_ref().and_then(|c| c.key.as_ref()) {
+            bottom = self.key_origin().1 + layout.bounds.y1 + 16;
+        }
         (WIDTH, HEIGHT.max(bottom as u32))
     }
 
@@ -241,6 +320,14 @@ impl Figure for MapFigure<'_> {
                 .into_iter()
                 .map(|line| PathElement::new(line, BLACK.stroke_width(2))),
         )?;
+        if let Some(c) = &self.curves {
+            let (xs, ys) = (range(&xe), range(&ye));
+            let bounds = ([xs.start, ys.start], [xs.end, ys.end]);
+            draw_curves(&mut chart, root, c.set, bounds, c.swap)?;
+            if let Some((legend, layout)) = &c.key {
+                legend.draw(layout, root, self.key_origin())?;
+            }
+        }
         let (legend, layout) = &self.legend;
         legend.draw(layout, root, LEGEND_ORIGIN)
     }
@@ -251,9 +338,11 @@ impl MapFigure<'_> {
     pub fn legend_boxes(&self) -> (Vec<Rect>, Rect) {
         let (w, h) = self.size();
         let (x, y) = LEGEND_ORIGIN;
-        (
-            self.legend.1.boxes().map(|r| r.shifted(x, y)).collect(),
-            Rect::at(0, 0, (w as i32, h as i32)),
-        )
+        let mut boxes: Vec<Rect> = self.legend.1.boxes().map(|r| r.shifted(x, y)).collect();
+        if let Some((_, layout)) = self.curves.as_ref().and_then(|c| c.key.as_ref()) {
+            let (x, y) = self.key_origin();
+            boxes.extend(layout.boxes().map(|r| r.shifted(x, y)));
+        }
+        (boxes, Rect::at(0, 0, (w as i32, h as i32)))
     }
 }

@@ -9,7 +9,9 @@
 //! * [`orbit`] — a motion's time history in six panels (the paper's Figs. 12–16);
 //! * [`sweep`] — a sweep's bifurcation diagram (Figs. 9–10), its branches
 //!   drawn by [`branch`], its bifurcations marked by [`symbol`];
-//! * [`map`] — a parameter map (Fig. 11);
+//! * [`map`] — a parameter map (Fig. 11), optionally with exact curves over it;
+//! * [`regime`] — a regime map from curves alone: regions filled and
+//!   numbered, curves by kind, codimension-two points marked;
 //! * [`trade`] — error against computing time.
 
 pub mod backend;
