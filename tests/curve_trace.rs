@@ -240,7 +240,12 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
                 _ => (e - dp).determinant(),
             };
             let scale = 1.0 + dp.trace().abs() + dp.determinant().abs();
-            assert!(psi.abs() <= 1e-8 * scale, "{:?} at {:?}: {psi:e}", sp.kind, sp.at);
+            assert!(
+                psi.abs() <= 1e-8 * scale,
+                "{:?} at {:?}: {psi:e}",
+                sp.kind,
+                sp.at
+            );
             assert!(sp.index + 1 < c.points.len());
             specials += 1;
         }
