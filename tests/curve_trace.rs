@@ -189,8 +189,9 @@ fn describe(c: &Curve) -> String {
     )
 }
 
-#[test]
-fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
+/// The curves of every transition of the branches through the motions
+/// from rest along W at Q0 = 70 (paper model).
+fn paper_curves() -> Vec<Curve> {
     use stickslip::models::paper::{Paper, Params};
     let base = Params::default();
     let plane = paper_plane();
@@ -219,6 +220,15 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
     for c in &curves {
         eprintln!("{}", describe(c));
     }
+    curves
+}
+
+#[test]
+fn paper_curves_satisfy_their_conditions_and_match_branches_at_other_q0() {
+    use stickslip::models::paper::{Paper, Params};
+    let base = Params::default();
+    let plane = paper_plane();
+    let curves = paper_curves();
     let kinds: Vec<TransitionKind> = curves.iter().map(|c| c.kind).collect();
     assert!(curves.len() >= 3, "{kinds:?}");
     assert!(kinds.iter().any(|k| !k.is_eigenvalue()));
@@ -677,4 +687,49 @@ fn a_period_doubling_curve_of_the_paper_model() {
         eprintln!("Q0 = {q}: PD at W = {} ({near:e} from the branch's)", x.x);
         assert!(near <= 1e-8, "Q0 = {q}: {near:e}");
     }
+}
+
+#[test]
+fn sweeps_at_other_q0_locate_the_curves_crossings() {
+    use stickslip::models::paper::{Paper, Params};
+    use stickslip::study::sweep::{sweep, SweepOptions};
+    let base = Params::default();
+    let plane = paper_plane();
+    let curves = paper_curves();
+    let mut matched = 0;
+    for q in [40.0, 100.0] {
+        let mut b = base;
+        b.Q0 = q;
+        let s = sweep::<Paper>(b, "W", 0.2, 8.0, 40, SweepOptions::default()).expect("sweep");
+        let mut located: Vec<(TransitionKind, f64)> =
+            s.transitions.iter().map(|t| (t.kind, t.value)).collect();
+        located.extend(s.bifurcations.iter().map(|f| (f.kind, f.value)));
+        for c in &curves {
+            for x in crossings::<Paper>(&base, &plane, c, Line::Y(q), &CurveOptions::default()) {
+                let near = located
+                    .iter()
+                    .filter(|(k, _)| *k == c.kind)
+                    .map(|(_, v)| (v - x.x).abs())
+                    .fold(f64::INFINITY, f64::min);
+                eprintln!(
+                    "Q0 = {q}: {:?} at W = {} ({near:e} from the sweep's)",
+                    c.kind, x.x
+                );
+                // The same event if within 1e-6: then to 1e-8.
+                if near <= 1e-6 {
+                    assert!(
+                        near <= 1e-8,
+                        "Q0 = {q}: {:?} at W = {}: {near:e}",
+                        c.kind,
+                        x.x
+                    );
+                    matched += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        matched >= 3,
+        "only {matched} crossings located by the sweeps"
+    );
 }

@@ -7,6 +7,7 @@ use crate::dynamics::simulate::{Event, EventKind, Location, Segment, Simulator};
 use crate::model::{MappingKind, Model, ModelInfo, Side};
 use crate::orbit::motion::{solve, Motion, OrbitError};
 use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use crate::orbit::steady::{steady_response, SteadyResponse};
 use crate::orbit::structure::Structure;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -204,44 +205,6 @@ pub fn mapping_between<M: Model>(before: &Event, after: &Event) -> Option<usize>
                 .position(|m| m.kind == MappingKind::Stick && m.exit == Some(side))
         }
     }
-}
-
-/// The steady forced response of domain `j` (its particular solution):
-/// `x(φ) = a cos φ + b sin φ + offset`, `v(φ) = W (−a sin φ + b cos φ)`
-/// with `φ = W t`, so that its velocity ranges over `±W √(a² + b²)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SteadyResponse {
-    /// The cosine coefficient.
-    pub a: f64,
-    /// The sine coefficient.
-    pub b: f64,
-    /// The constant part, `−b_j / c_j`.
-    pub offset: f64,
-    /// The largest velocity, `W √(a² + b²)` (the smallest is its negative).
-    pub max_v: f64,
-}
-
-/// The steady forced response of domain `j` at `p` (closed form), or
-/// `None` if the domain is not damped (`2d <= 0` or NaN: no steady response
-/// attracts).
-pub fn steady_response<M: Model>(p: &M::Params, j: usize) -> Option<SteadyResponse> {
-    let co = M::coefficients(p, j);
-    let osc = M::oscillator(p);
-    let d = 0.5 * co.two_d;
-    let c = co.c;
-    if d.is_nan() || d <= 0.0 {
-        return None;
-    }
-    let w = osc.frequency;
-    let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
-    let a = osc.amplitude * (c - w * w) / den;
-    let b = 2.0 * d * w * osc.amplitude / den;
-    Some(SteadyResponse {
-        a,
-        b,
-        offset: -co.b / c,
-        max_v: w * a.hypot(b),
-    })
 }
 
 /// Certificate that the motion in domain `j` from `(x, v, phase)` never

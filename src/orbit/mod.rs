@@ -8,6 +8,7 @@
 //! * [`stability`] — the monodromy matrix and its eigenvalues;
 //! * [`motion`] — a solved, checked periodic motion;
 //! * [`attractor`] — what a simulation settles on: a motion, a stick, a family;
+//! * [`steady`] — a domain's steady forced response in closed form (the no-motion regime);
 //! * [`known`] — known stable motions seen stroboscopically, and a settle that stops near one.
 //!
 //! Depends on [`crate::model`](mod@crate::model) and [`crate::dynamics`].
@@ -20,4 +21,5 @@ pub mod known;
 pub mod motion;
 pub mod periodic;
 pub mod stability;
+pub mod steady;
 pub mod structure;

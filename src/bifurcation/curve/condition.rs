@@ -12,7 +12,7 @@
 //!   `det DP − 1` (dimensionless; the pair's being complex is watched along
 //!   the curve, not imposed).
 //! * `RestGrazing`: the velocity margin of the no-motion regime's steady
-//!   forced response ([`crate::orbit::attractor::steady_response`]) to the
+//!   forced response ([`crate::orbit::steady::steady_response`]) to the
 //!   boundary: `v_b − max v` when the boundary bounds the domain above,
 //!   `min v − v_b` below. The domain is the neighbour of the boundary whose
 //!   margin is the smaller in magnitude at the curve's start.
@@ -24,8 +24,8 @@ use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
 use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
-use crate::orbit::attractor::steady_response;
 use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::steady::steady_response;
 use crate::orbit::structure::Structure;
 
 /// `(tr DP, det DP)` of the motion, `None` where a mapping's arrival is singular.

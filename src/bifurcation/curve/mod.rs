@@ -7,6 +7,32 @@
 //! regime's steady response), and the pseudo-arclength row. A curve is
 //! followed both ways to the box's edge, back to itself, or to a
 //! codimension-two point where a second condition vanishes too.
+//!
+//! * [`extended`]: the `(2m + 2)`-square system (mapping equations,
+//!   condition, border row) by a dense LU on a preallocated workspace; the
+//!   mapping blocks exact, `∂F/∂λ` and `∇g` central differences. A corrector
+//!   step and a tangent allocate nothing.
+//! * `condition`: each [`Condition`] as a function of `(u, λ)`. A margin is
+//!   computed by the admissibility walk with no event search (the closed
+//!   form's interior margin, smooth in the points; see
+//!   `orbit::admissible::margin_of`); `det(I ∓ DP)`, `det DP − 1` from the
+//!   generated blocks; the rest regime's margin from
+//!   [`crate::orbit::steady::steady_response`].
+//! * `trace`: predictor–corrector with the step control of
+//!   [`crate::bifurcation::continuation`]; ends on the box's edge (solved
+//!   with that parameter fixed), back at the start (a closed curve: no
+//!   ends), where another condition's margin vanishes (codimension two:
+//!   for a margin curve every other admissibility condition but those that
+//!   vanish with its own at the start; for an eigenvalue curve every
+//!   condition, and a Neimark–Sacker pair turning real, named `Fold` for a
+//!   1:1 and `PeriodDoubling` for a 1:2 resonance), at the corrector's
+//!   failure at the smallest step, or at the point limit. Along a margin
+//!   curve the sign changes of `det(I − DP)` and `det(I + DP)` are located
+//!   as [`Special`] points (a fold or period-doubling curve met).
+//! * [`crossings`]: each crossing of a line solved with the line's
+//!   parameter fixed.
+//! * [`condition_at_transition`]: the condition to trace from a transition
+//!   a one-parameter continuation located.
 
 mod condition;
 mod crossing;

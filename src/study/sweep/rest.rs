@@ -15,7 +15,7 @@ use super::{with, SweepOptions, Transition, TransitionKind};
 /// that stays inside the band.
 pub(super) fn steady_nm<M: Model>(sim: &Simulator<M>, domain: usize) -> Option<NoMotion> {
     // On the forced response itself the homogeneous part is zero.
-    let r = attractor::steady_response::<M>(sim.params(), domain)?;
+    let r = crate::orbit::steady::steady_response::<M>(sim.params(), domain)?;
     let x = r.a + r.offset;
     let v = sim.oscillator().frequency * r.b;
     attractor::no_motion_certificate(sim, domain, x, v, 0.0)
