@@ -34,6 +34,7 @@
 //! depend on how it was computed.
 
 mod classify;
+mod continuation;
 mod error;
 mod file;
 mod grid;
@@ -42,8 +43,9 @@ mod run;
 pub use classify::{classify_point, motion_label};
 pub use error::{AxisError, MapError};
 pub use file::{MapFile, MapHeader, PointResult};
-pub use grid::{grid_len, GridAxis, Shard};
-pub use run::{merge, run_map, MapOptions, Summary};
+pub use continuation::{classify_tile, no_motion_exists, Continuer, CONTINUATION_NEWTON};
+pub use grid::{grid_len, tile_count, tile_of, tile_points, GridAxis, Shard, TILE};
+pub use run::{merge, run_map, MapMethod, MapOptions, Summary};
 
 /// Forcing periods simulated at most from each start.
 pub const MAX_PERIODS: u32 = 600;
