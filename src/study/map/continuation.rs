@@ -68,6 +68,11 @@ pub const CONTINUATION_NEWTON: NewtonOptions = NewtonOptions {
 /// motions of period 2 to 13). The start is then simulated until it settles.
 pub const MARGIN_GUARD: f64 = 1e-2;
 
+/// The starts are simulated at least at every `SEED_SPACING`-th point of a
+/// tile in both directions, so that a region this wide is entered even where
+/// no neighbour's motion is lost at its border.
+pub const SEED_SPACING: usize = 4;
+
 /// Sweeps over a tile after the first (alternately backwards and forwards),
 /// at most; they stop as soon as one adds nothing.
 const MAX_SWEEPS: usize = 8;
@@ -169,6 +174,8 @@ struct Cell<M: Model> {
     status: String,
     motions: Vec<Found>,
     others: BTreeSet<&'static str>,
+    /// Whether the starts were simulated here.
+    checked: bool,
 }
 
 /// A motion of a cell: its label, the motion, and whether its smallest
@@ -200,6 +207,14 @@ impl<M: Model> Cell<M> {
             motion,
             clear,
         });
+    }
+
+    /// The labels on the map (motions and the others), sorted.
+    fn key(&self) -> Vec<String> {
+        let mut motions: Vec<String> = self.motions.iter().map(|f| f.label.clone()).collect();
+        motions.extend(self.others.iter().map(|s| s.to_string()));
+        motions.sort();
+        motions
     }
 
     fn result(&self) -> PointResult {
@@ -311,13 +326,11 @@ fn settle_cell<M: Model>(cell: &mut Cell<M>, lost: &[&Motion]) {
     let Some(sim) = cell.sim.clone() else {
         return;
     };
+    cell.checked = true;
     let opts = AttractorOptions {
         max_periods: MAX_PERIODS,
         ..AttractorOptions::default()
     };
-    if no_motion_exists(&sim) {
-        cell.others.insert(NO_MOTION);
-    }
     let mut problems = Vec::new();
     for (k, (x0, v0, phase0)) in starts(&sim).into_iter().enumerate() {
         let known = known_at(&sim, cell, phase0);
@@ -370,6 +383,7 @@ pub fn classify_tile<M: Model>(
                     status: String::new(),
                     motions: Vec::new(),
                     others: BTreeSet::new(),
+                    checked: false,
                 },
                 Err(e) => Cell {
                     index,
@@ -379,6 +393,7 @@ pub fn classify_tile<M: Model>(
                     status: format!("invalid: {e}"),
                     motions: Vec::new(),
                     others: BTreeSet::new(),
+                    checked: false,
                 },
             },
             Err((x, y, status)) => Cell {
@@ -389,6 +404,7 @@ pub fn classify_tile<M: Model>(
                 status,
                 motions: Vec::new(),
                 others: BTreeSet::new(),
+                checked: false,
             },
         })
         .collect();
@@ -414,6 +430,68 @@ fn neighbours(i: usize, w: usize, n: usize) -> impl Iterator<Item = usize> {
     [left, below, right, above].into_iter().flatten()
 }
 
+/// Whether cell `i` must simulate its starts: a seed, a motion close to a
+/// transition, or a set that differs from a neighbour's.
+fn needs_check<M: Model>(cells: &[Cell<M>], i: usize, w: usize, only_done: bool) -> bool {
+    let c = &cells[i];
+    if c.checked || c.sim.is_none() {
+        return false;
+    }
+    let (cx, cy) = (i % w, i / w);
+    if (cx % SEED_SPACING == 0 && cy % SEED_SPACING == 0) || c.motions.iter().any(|f| !f.clear) {
+        return true;
+    }
+    let key = c.key();
+    neighbours(i, w, cells.len())
+        .filter(|&j| !only_done || j < i)
+        .any(|j| cells[j].sim.is_some() && cells[j].key() != key)
+}
+
+/// The motions of the neighbours of cell `i` that it lacks (its lost motions).
+fn lost_at<M: Model>(cells: &[Cell<M>], i: usize, w: usize) -> Vec<Motion> {
+    let mut lost: Vec<Motion> = Vec::new();
+    for j in neighbours(i, w, cells.len()) {
+        for f in &cells[j].motions {
+            if !cells[i].has(&f.label) && !lost.iter().any(|m| m.structure == f.motion.structure) {
+                lost.push(f.motion.clone());
+            }
+        }
+    }
+    lost
+}
+
+/// Continue every neighbour's motion into the cells that lack it, sweeping
+/// back and forth until nothing changes.
+fn sweep<M: Model>(cells: &mut [Cell<M>], w: usize, continuer: &mut Continuer<M>) {
+    let n = cells.len();
+    for pass in 0..MAX_SWEEPS {
+        let mut changed = false;
+        let order: Vec<usize> = if pass % 2 == 0 {
+            (0..n).rev().collect()
+        } else {
+            (0..n).collect()
+        };
+        for &i in &order {
+            for j in neighbours(i, w, n) {
+                let from: Vec<Found> = cells[j]
+                    .motions
+                    .iter()
+                    .filter(|f| !cells[i].has(&f.label))
+                    .cloned()
+                    .collect();
+                for Found { label, motion, .. } in &from {
+                    if continue_into(&mut cells[i], continuer, label, motion) == Some(true) {
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+}
+
 fn classify_cells<M: Model>(cells: &mut [Cell<M>], nx: usize) {
     let n = cells.len();
     let Some(first) = cells.first() else {
@@ -427,7 +505,7 @@ fn classify_cells<M: Model>(cells: &mut [Cell<M>], nx: usize) {
         .max(1);
     let mut continuer = Continuer::<M>::new();
     // First sweep: continue from the cells already done (left, below), then
-    // settle the starts and the lost motions.
+    // simulate the starts where needed.
     for i in 0..n {
         let mut lost: Vec<Motion> = Vec::new();
         for j in neighbours(i, w, n).filter(|&j| j < i) {
@@ -442,34 +520,32 @@ fn classify_cells<M: Model>(cells: &mut [Cell<M>], nx: usize) {
                 }
             }
         }
-        let lost: Vec<&Motion> = lost.iter().collect();
-        settle_cell(&mut cells[i], &lost);
-    }
-    // Later sweeps: every neighbour's motion into the cells that lack it.
-    for sweep in 0..MAX_SWEEPS {
-        let mut changed = false;
-        let order: Vec<usize> = if sweep % 2 == 0 {
-            (0..n).rev().collect()
-        } else {
-            (0..n).collect()
-        };
-        for &i in &order {
-            for j in neighbours(i, w, n) {
-                let from: Vec<Found> = cells[j]
-                    .motions
-                    .iter()
-                    .filter(|f| !cells[i].has(&f.label))
-                    .cloned()
-                    .collect();
-                for Found { label, motion, .. } in &from {
-                    if continue_into(&mut cells[i], &mut continuer, label, motion) == Some(true) {
-                        changed = true;
-                    }
-                }
+        if let Some(sim) = &cells[i].sim {
+            if no_motion_exists(sim) {
+                cells[i].others.insert(NO_MOTION);
             }
         }
-        if !changed {
+        if !lost.is_empty() || needs_check(cells, i, w, true) {
+            let lost: Vec<&Motion> = lost.iter().collect();
+            settle_cell(&mut cells[i], &lost);
+        }
+    }
+    // Then: coexisting motions continued everywhere they live, and the
+    // starts simulated wherever a set still differs from a neighbour's,
+    // until neither adds anything.
+    loop {
+        sweep(cells, w, &mut continuer);
+        let todo: Vec<usize> = (0..n).filter(|&i| needs_check(cells, i, w, false)).collect();
+        if todo.is_empty() {
             break;
         }
+        for i in todo {
+            let lost = lost_at(cells, i, w);
+            let lost: Vec<&Motion> = lost.iter().collect();
+            settle_cell(&mut cells[i], &lost);
+        }
+    }
+    for c in cells.iter_mut().filter(|c| c.sim.is_some() && !c.checked) {
+        c.status = "ok".to_string();
     }
 }
