@@ -3,29 +3,32 @@
 //! as a unit, each point's motions continued from its neighbours' by Newton
 //! instead of simulated for hundreds of forcing periods.
 //!
-//! At each point, in row order:
+//! First sweep, row by row:
 //!
 //! 1. every motion of the left and lower neighbours is continued: Newton
 //!    from its switching points at the point's parameters, kept if it
 //!    converges, is admissible (every margin of SPEC §6 positive,
 //!    [`worst_margin`]) and stable ([`Continuer`], allocation-free);
 //! 2. "no motion" is decided in closed form: some domain's forced response
-//!    stays strictly inside its band ([`no_motion_certificate`] at the
-//!    forced response itself), with no simulation;
+//!    stays strictly inside its band ([`no_motion_exists`]);
 //! 3. the two starts of the simulation method (rest, and above the stick
-//!    boundary half a period later) are simulated only until they enter the
-//!    neighbourhood of a motion already known there ([`known::settle`]):
-//!    a few periods where nothing new happens, the full settle (cycle
-//!    detection, Newton) where they go somewhere new. So every motion the
-//!    simulation method finds at the point is found here too;
-//! 4. where a neighbour's motion is lost (Newton fails, or the solution is
-//!    inadmissible or unstable), the simulation also starts from the lost
-//!    motion's first switching point, to find what it becomes.
+//!    boundary half a period later) are simulated where something may be
+//!    new: at seed points (every [`SEED_SPACING`]-th point both ways), where
+//!    a neighbour's motion is lost (Newton fails, or the solution is
+//!    inadmissible or unstable; the lost motion's first switching point is
+//!    simulated too, to find what it becomes), where a motion is within
+//!    [`MARGIN_GUARD`] of a transition, and where the point's set differs
+//!    from a neighbour's. A start is simulated only until it enters the
+//!    neighbourhood of a motion known there ([`known::settle`]): a few
+//!    periods where nothing new happens, the full settle (cycle detection,
+//!    Newton) where it goes somewhere new.
 //!
-//! Then the tile is swept back and forth, continuing every neighbour's
-//! motion (all four neighbours) into the points that lack it, until nothing
-//! changes: a motion continued into a region where another also lives is
-//! listed with it (coexistence). A motion is never dropped: sets only grow.
+//! Then, until nothing changes: the tile is swept back and forth,
+//! continuing every neighbour's motion (all four neighbours) into the points
+//! that lack it — a motion continued into a region where another also lives
+//! is listed with it (coexistence) — and the starts are simulated at every
+//! point not yet simulated whose set differs from a neighbour's. Sets only
+//! grow: a motion is never dropped because a simulation went elsewhere.
 //!
 //! A tile's result depends only on the tile (its points, in a fixed order),
 //! never on the shards, the threads or which tiles were computed before, so
@@ -33,7 +36,8 @@
 //! written are labels (structure names, [`structure_label`]): a continued
 //! motion keeps the canonical structure it was found with, and a motion
 //! that continues into a repetition of a shorter cycle is reduced to it
-//! ([`attractor::primitive`]), as the simulation names it.
+//! ([`attractor::primitive`]), as the simulation names it. A point whose
+//! starts were not simulated has the status `ok`.
 
 use std::collections::BTreeSet;
 
@@ -65,13 +69,15 @@ pub const CONTINUATION_NEWTON: NewtonOptions = NewtonOptions {
 /// a grazing or a stick onset, where a state near it can leave it through
 /// the transition (on the 100 × 100 check grid, starts that passed within
 /// the neighbourhood of such motions, margins 1e-6 to 2e-3, went on to
-/// motions of period 2 to 13). The start is then simulated until it settles.
-pub const MARGIN_GUARD: f64 = 1e-2;
+/// motions of period 2 to 13; the paper model's guard is 2e-3 · 4.5 = 9e-3).
+/// Such a start is simulated until it settles, and a point with such a
+/// motion always simulates its starts.
+pub const MARGIN_GUARD: f64 = 2e-3;
 
 /// The starts are simulated at least at every `SEED_SPACING`-th point of a
 /// tile in both directions, so that a region this wide is entered even where
 /// no neighbour's motion is lost at its border.
-pub const SEED_SPACING: usize = 4;
+pub const SEED_SPACING: usize = 8;
 
 /// Sweeps over a tile after the first (alternately backwards and forwards),
 /// at most; they stop as soon as one adds nothing.
@@ -133,7 +139,7 @@ impl<M: Model> Continuer<M> {
             return None;
         }
         let margin = worst_margin(sim, structure, &self.points)?;
-        if !(margin.margin > 0.0) {
+        if margin.margin.is_nan() || margin.margin <= 0.0 {
             return None;
         }
         let dp = solver.poincare_jacobian_at_solution().ok()?;
@@ -153,7 +159,7 @@ pub fn no_motion_exists<M: Model>(sim: &Simulator<M>) -> bool {
     (0..M::INFO.domains.len()).any(|j| {
         let co = sim.coefficients(j);
         let (d, c, w) = (0.5 * co.two_d, co.c, osc.frequency);
-        if !(d > 0.0 && c != 0.0) {
+        if d.is_nan() || d <= 0.0 || c == 0.0 {
             return false;
         }
         let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
