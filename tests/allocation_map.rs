@@ -62,7 +62,8 @@ fn continuing_a_motion_to_a_neighbouring_point_allocates_nothing() {
             let r = PeriodicSolver::<Paper>::new(structure.clone()).residual(there.params(), &pts);
             assert!(r < 1e-9, "{text}: residual {r:e}");
             assert!(rho < 1.0, "{text}");
-            let moved = (p0.x - motion.points[0].x).abs() + (p0.phase - motion.points[0].phase).abs();
+            let moved =
+                (p0.x - motion.points[0].x).abs() + (p0.phase - motion.points[0].phase).abs();
             assert!(moved > 0.0 && moved < 0.1, "{text}: moved {moved}");
         }
     }

@@ -238,11 +238,7 @@ impl<M: Model> Cell<M> {
 }
 
 /// A converged motion from the continuer's points (admissible and stable).
-fn motion_from(
-    structure: &Structure,
-    points: &[SwitchingPoint],
-    stability: Stability,
-) -> Motion {
+fn motion_from(structure: &Structure, points: &[SwitchingPoint], stability: Stability) -> Motion {
     Motion {
         structure: structure.clone(),
         points: points.to_vec(),
@@ -274,8 +270,7 @@ fn continue_into<M: Model>(
     if cell.has(label) {
         return Some(false);
     }
-    let (points, stability) =
-        continuer.continue_motion(sim, &motion.structure, &motion.points)?;
+    let (points, stability) = continuer.continue_motion(sim, &motion.structure, &motion.points)?;
     let mut found = motion_from(&motion.structure, points, stability);
     let mut label = label.to_string();
     if is_repetition(&found.structure) {
@@ -379,40 +374,42 @@ pub fn classify_tile<M: Model>(
     let indices = tile_points(tile, x_axis.count, y_axis.count);
     let mut cells: Vec<Cell<M>> = indices
         .iter()
-        .map(|&index| match point_params::<M>(base, x_axis, y_axis, index) {
-            Ok((x, y, p)) => match Simulator::<M>::new(p, SimOptions::default()) {
-                Ok(sim) => Cell {
-                    index,
-                    x,
-                    y,
-                    sim: Some(sim),
-                    status: String::new(),
-                    motions: Vec::new(),
-                    others: BTreeSet::new(),
-                    checked: false,
+        .map(
+            |&index| match point_params::<M>(base, x_axis, y_axis, index) {
+                Ok((x, y, p)) => match Simulator::<M>::new(p, SimOptions::default()) {
+                    Ok(sim) => Cell {
+                        index,
+                        x,
+                        y,
+                        sim: Some(sim),
+                        status: String::new(),
+                        motions: Vec::new(),
+                        others: BTreeSet::new(),
+                        checked: false,
+                    },
+                    Err(e) => Cell {
+                        index,
+                        x,
+                        y,
+                        sim: None,
+                        status: format!("invalid: {e}"),
+                        motions: Vec::new(),
+                        others: BTreeSet::new(),
+                        checked: false,
+                    },
                 },
-                Err(e) => Cell {
+                Err((x, y, status)) => Cell {
                     index,
                     x,
                     y,
                     sim: None,
-                    status: format!("invalid: {e}"),
+                    status,
                     motions: Vec::new(),
                     others: BTreeSet::new(),
                     checked: false,
                 },
             },
-            Err((x, y, status)) => Cell {
-                index,
-                x,
-                y,
-                sim: None,
-                status,
-                motions: Vec::new(),
-                others: BTreeSet::new(),
-                checked: false,
-            },
-        })
+        )
         .collect();
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         classify_cells(&mut cells, x_axis.count)
@@ -541,7 +538,9 @@ fn classify_cells<M: Model>(cells: &mut [Cell<M>], nx: usize) {
     // until neither adds anything.
     loop {
         sweep(cells, w, &mut continuer);
-        let todo: Vec<usize> = (0..n).filter(|&i| needs_check(cells, i, w, false)).collect();
+        let todo: Vec<usize> = (0..n)
+            .filter(|&i| needs_check(cells, i, w, false))
+            .collect();
         if todo.is_empty() {
             break;
         }

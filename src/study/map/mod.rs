@@ -62,9 +62,9 @@ mod grid;
 mod run;
 
 pub use classify::{classify_point, motion_label};
+pub use continuation::{classify_tile, no_motion_exists, Continuer, CONTINUATION_NEWTON};
 pub use error::{AxisError, MapError};
 pub use file::{MapFile, MapHeader, PointResult};
-pub use continuation::{classify_tile, no_motion_exists, Continuer, CONTINUATION_NEWTON};
 pub use grid::{grid_len, tile_count, tile_of, tile_points, GridAxis, Shard, TILE};
 pub use run::{merge, run_map, MapMethod, MapOptions, Summary};
 
