@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One shard of a `stickslip map`, as a task of a Slurm job array.
 #
-# Each array task k of n computes the grid points whose index % n == k into
+# Each array task k of n computes the 16 x 16-point tiles of the grid whose number (row by row) is k mod n into
 # $OUTDIR/shard-k.csv. `scripts/slurm-merge.sh` then joins the shards into
 # $OUTDIR/map.csv, byte-identical to a single `stickslip map` of the whole
 # grid. `scripts/slurm-submit.sh` submits both (the merge waits for the whole

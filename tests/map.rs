@@ -291,10 +291,18 @@ fn a_sigkilled_run_resumes() {
     assert_eq!(fs::read_to_string(&out).unwrap(), want);
 }
 
+/// The x axis of the shard test: 33 points, three tiles of 16, 16 and 1 columns.
+const SHARD_X: &str = "W=2.5:5:33";
+
 #[test]
 fn c_shards_merged_equal_a_single_run() {
-    let want = reference();
+    // Three tiles (16, 16 and 1 points wide): one per shard.
     let dir = dir("shards");
+    let single = dir.join("single.csv");
+    run_on(SHARD_X, Y, &single, MapOptions::default()).unwrap();
+    let want_text = fs::read_to_string(&single).unwrap();
+    let want: &str = &want_text;
+    let run = |out: &Path, opts: MapOptions| run_on(SHARD_X, Y, out, opts);
     let mut files = Vec::new();
     for k in 0..3 {
         let out = dir.join(format!("shard{k}.csv"));
@@ -306,7 +314,8 @@ fn c_shards_merged_equal_a_single_run() {
             },
         )
         .unwrap();
-        assert_eq!((s.shard_points, s.computed, s.complete), (6, 6, true));
+        let tile = [48, 48, 3][k];
+        assert_eq!((s.shard_points, s.computed, s.complete), (tile, tile, true));
         let text = fs::read_to_string(&out).unwrap();
         assert!(text
             .lines()
@@ -317,7 +326,7 @@ fn c_shards_merged_equal_a_single_run() {
     }
     let merged = dir.join("merged.csv");
     let s = merge(&files, &merged).unwrap();
-    assert_eq!((s.grid_points, s.complete), (18, true));
+    assert_eq!((s.grid_points, s.complete), (99, true));
     assert_eq!(fs::read_to_string(&merged).unwrap(), want);
 
     // A shard killed and resumed, in another order, with an overlapping

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::Args;
 use stickslip::output::figure::map::plot_map;
 use stickslip::output::map_summary;
-use stickslip::study::map::{run_map, GridAxis, MapOptions, Shard};
+use stickslip::study::map::{run_map, GridAxis, MapMethod, MapOptions, Shard};
 use stickslip::Model;
 
 use super::args::{check_plot_path, with_model, Assignments, WithModel};
@@ -34,9 +34,16 @@ pub struct MapArgs {
     /// Continue an interrupted run from its output file.
     #[arg(long)]
     resume: bool,
-    /// Compute only part `k` of `n` (`k/n`, k from 0), for a cluster job array.
+    /// Compute only part `k` of `n` (`k/n`, k from 0), for a cluster job
+    /// array: the 16 × 16-point tiles whose number is `k` mod `n`.
     #[arg(long)]
     shard: Option<String>,
+    /// How each point is classified: `continuation` (neighbours' motions
+    /// continued by Newton; starts simulated only until they near a known
+    /// motion) or `simulation` (every point simulated from its starts until
+    /// it settles; about ten times slower, lists fewer coexisting motions).
+    #[arg(long, default_value = "continuation", value_parser = ["continuation", "simulation"])]
+    method: String,
     /// Draw the map into FILE (.svg or .png) when it is complete.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
@@ -66,6 +73,7 @@ impl WithModel for MapCmd {
             shard,
             progress: true,
             max_points: None,
+            method: MapMethod::parse(&self.args.method).unwrap_or_default(),
         };
         let summary = run_map::<M>(&base, &x, &y, &self.args.out, &opts)?;
         if let Some(plot) = &self.args.plot {

@@ -9,6 +9,7 @@ use crate::model::Model;
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::Termination;
+use crate::orbit::structure::Structure;
 
 use super::file::PointResult;
 use super::grid::GridAxis;
@@ -16,8 +17,13 @@ use super::{MAX_PERIODS, NO_MOTION, STICK};
 
 /// The motion's name on the map: its structure, with `^N` for `N > 1`.
 pub fn motion_label<M: Model>(motion: &Motion) -> String {
-    let n = motion.structure.periods();
-    let s = motion.structure.notation(M::INFO);
+    structure_label::<M>(&motion.structure)
+}
+
+/// The name on the map of a motion of `structure` (see [`motion_label`]).
+pub(super) fn structure_label<M: Model>(structure: &Structure) -> String {
+    let n = structure.periods();
+    let s = structure.notation(M::INFO);
     if n > 1 {
         format!("{s}^{n}")
     } else {
@@ -44,7 +50,7 @@ fn same_motion(a: &Motion, b: &Motion) -> bool {
 }
 
 /// Short text for a start that did not settle.
-fn failure<M: Model>(e: &OrbitError) -> String {
+pub(super) fn failure<M: Model>(e: &OrbitError) -> String {
     match e {
         OrbitError::Unsettled { periods, .. } => format!("unsettled ({periods} periods)"),
         OrbitError::NotConverged(Termination::NotConverged { reason, .. }) => {
@@ -63,7 +69,7 @@ fn failure<M: Model>(e: &OrbitError) -> String {
 
 /// The two starts of every grid point: rest, and `v` one above the stick
 /// boundary (or the highest boundary) half a forcing period later.
-fn starts<M: Model>(sim: &Simulator<M>) -> [(f64, f64, f64); 2] {
+pub(super) fn starts<M: Model>(sim: &Simulator<M>) -> [(f64, f64, f64); 2] {
     let info = M::INFO;
     let k = info
         .stick_boundary()
@@ -84,9 +90,18 @@ pub fn classify_point<M: Model>(
     y_axis: &GridAxis,
     index: usize,
 ) -> PointResult {
-    let nx = x_axis.count.max(1);
-    let (ix, iy) = (index % nx, index / nx);
-    let (x, y) = (x_axis.value(ix), y_axis.value(iy));
+    let (x, y, p) = match point_params::<M>(base, x_axis, y_axis, index) {
+        Ok(at) => at,
+        Err((x, y, status)) => {
+            return PointResult {
+                index,
+                x,
+                y,
+                status,
+                motions: Vec::new(),
+            }
+        }
+    };
     let mut result = PointResult {
         index,
         x,
@@ -94,37 +109,53 @@ pub fn classify_point<M: Model>(
         status: String::new(),
         motions: Vec::new(),
     };
-    let mut p = *base;
-    for (axis, value) in [(x_axis, x), (y_axis, y)] {
-        match M::Params::index_of(&axis.name) {
-            Some(i) => p.set(i, value),
-            None => {
-                let e = axis.check_for::<M>().expect_err("not a run-time parameter");
-                result.status = format!("invalid: {e}");
-                return result;
-            }
-        }
-    }
-    if let Err(e) = p.check() {
-        result.status = format!("invalid: {e}");
-        return result;
-    }
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| settle::<M>(p)));
     match outcome {
         Ok((status, motions)) => {
             result.status = status;
             result.motions = motions;
         }
-        Err(panic) => {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown".to_string());
-            result.status = format!("panic: {what}");
-        }
+        Err(panic) => result.status = format!("panic: {}", panic_text(&*panic)),
     }
     result
+}
+
+/// Grid point `index`: `(x, y, parameters)`, checked; or `(x, y, "invalid: …")`.
+pub(super) fn point_params<M: Model>(
+    base: &M::Params,
+    x_axis: &GridAxis,
+    y_axis: &GridAxis,
+    index: usize,
+) -> Result<(f64, f64, M::Params), (f64, f64, String)> {
+    let nx = x_axis.count.max(1);
+    let (ix, iy) = (index % nx, index / nx);
+    let (x, y) = (x_axis.value(ix), y_axis.value(iy));
+    let mut p = *base;
+    for (axis, value) in [(x_axis, x), (y_axis, y)] {
+        match M::Params::index_of(&axis.name) {
+            Some(i) => p.set(i, value),
+            None => {
+                let e = match axis.check_for::<M>() {
+                    Err(e) => e.to_string(),
+                    Ok(()) => format!("`{}` is not a run-time parameter", axis.name),
+                };
+                return Err((x, y, format!("invalid: {e}")));
+            }
+        }
+    }
+    if let Err(e) = p.check() {
+        return Err((x, y, format!("invalid: {e}")));
+    }
+    Ok((x, y, p))
+}
+
+/// The text of a caught panic.
+pub(super) fn panic_text(panic: &(dyn std::any::Any + Send)) -> String {
+    panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown".to_string())
 }
 
 /// Simulate from both starts at checked parameters `p`: `(status, motions)`.

@@ -303,7 +303,7 @@ impl MapHeader {
             ));
         }
         if let Some(shard) = self.shard {
-            if !shard.contains(record.index) {
+            if !shard.contains(record.index, self.x.count) {
                 return Err(format!(
                     "index {} does not belong to shard {shard}",
                     record.index

@@ -1,5 +1,5 @@
-//! The grid of a map: its two axes ([`GridAxis`]) and the shards a cluster
-//! job array splits it into ([`Shard`]).
+//! The grid of a map: its two axes ([`GridAxis`]), its tiles ([`TILE`]) and
+//! the shards a cluster job array splits it into ([`Shard`]).
 
 use crate::model::param::{ParamError, ParamSet};
 use crate::model::Model;
@@ -131,7 +131,41 @@ pub fn grid_len(x: &GridAxis, y: &GridAxis) -> Result<usize, AxisError> {
         .ok_or(AxisError::TooLarge(x.count, y.count))
 }
 
-/// Part `index` of `count` disjoint parts of a grid: the points whose index is `index` mod `count`.
+/// Side of a tile, in grid points: the grid is cut into `TILE × TILE`
+/// squares (smaller at the top and right edges), numbered row by row. A
+/// tile is computed as a unit (the continuation method continues motions
+/// between its points), and the tiling does not depend on the shards.
+pub const TILE: usize = 16;
+
+/// Tiles per row of a grid `nx` points wide.
+pub fn tiles_per_row(nx: usize) -> usize {
+    nx.max(1).div_ceil(TILE)
+}
+
+/// Number of tiles of an `nx × ny` grid.
+pub fn tile_count(nx: usize, ny: usize) -> usize {
+    tiles_per_row(nx) * ny.div_ceil(TILE)
+}
+
+/// The tile of grid point `index` of a grid `nx` points wide.
+pub fn tile_of(index: usize, nx: usize) -> usize {
+    let nx = nx.max(1);
+    let (ix, iy) = (index % nx, index / nx);
+    (iy / TILE) * tiles_per_row(nx) + ix / TILE
+}
+
+/// The grid indices of tile `tile` of an `nx × ny` grid, row by row.
+pub fn tile_points(tile: usize, nx: usize, ny: usize) -> Vec<usize> {
+    let per_row = tiles_per_row(nx);
+    let (tx, ty) = (tile % per_row, tile / per_row);
+    let xs = tx * TILE..(tx * TILE + TILE).min(nx);
+    let ys = ty * TILE..(ty * TILE + TILE).min(ny);
+    ys.flat_map(|iy| xs.clone().map(move |ix| iy * nx + ix))
+        .collect()
+}
+
+/// Part `index` of `count` disjoint parts of a grid: the points of the
+/// tiles ([`TILE`]) whose number is `index` mod `count`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
     /// Which part (`0 ≤ index < count`).
@@ -153,9 +187,9 @@ impl Shard {
         Ok(Self { index, count })
     }
 
-    /// Whether grid point `i` belongs to this part.
-    pub fn contains(&self, i: usize) -> bool {
-        i % self.count == self.index
+    /// Whether grid point `i` of a grid `nx` points wide belongs to this part.
+    pub fn contains(&self, i: usize, nx: usize) -> bool {
+        tile_of(i, nx) % self.count == self.index
     }
 }
 
@@ -177,5 +211,19 @@ mod tests {
         assert_eq!(GridAxis::parse(&a.spec()).unwrap(), a);
         let one = GridAxis::parse("Q0=70:80:1").unwrap();
         assert_eq!(one.values(), vec![70.0]);
+    }
+
+    #[test]
+    fn tiles_cover_the_grid_once() {
+        for (nx, ny) in [(1, 1), (16, 16), (17, 5), (40, 33)] {
+            let mut seen = vec![0; nx * ny];
+            for t in 0..tile_count(nx, ny) {
+                for i in tile_points(t, nx, ny) {
+                    assert_eq!(tile_of(i, nx), t);
+                    seen[i] += 1;
+                }
+            }
+            assert!(seen.iter().all(|&n| n == 1), "{nx}x{ny}");
+        }
     }
 }

@@ -1,18 +1,39 @@
 //! Parameter maps (SPEC §9, the paper's Fig. 11): which motions exist at
 //! each point of a grid over two parameters.
 //!
-//! At every grid point the motion is simulated from two starts (rest, and a
-//! state above the stick boundary half a forcing period later) until it
-//! settles ([`attractor::find`](crate::orbit::attractor::find)); the distinct results — periodic motions
-//! named by structure and period, or `NM` — are the point's motions, so
-//! coexisting motions (the flow barrier of SPEC §10) show up as a set.
+//! Two methods ([`MapMethod`]):
+//!
+//! - **continuation** (the default, [`classify_tile`]): the grid is cut into
+//!   tiles of [`TILE`] × `TILE` points, each classified as a unit. A point's
+//!   motions are its neighbours' motions continued by Newton to its
+//!   parameters (kept when admissible and stable; allocation-free,
+//!   [`Continuer`]), "no motion" is decided in closed form
+//!   ([`no_motion_exists`]), and the simulation method's two starts are
+//!   simulated only where something may be new — at seed points, where a
+//!   motion is lost, where a motion is close to a transition, where a
+//!   point's set differs from a neighbour's — and then only until they
+//!   near a motion already known there. Coexisting motions are continued
+//!   into every point where they live.
+//! - **simulation** ([`classify_point`]): every point is simulated from two
+//!   starts (rest, and a state above the stick boundary half a forcing
+//!   period later) until it settles
+//!   ([`attractor::find`](crate::orbit::attractor::find)); the distinct
+//!   results are the point's motions.
+//!
+//! Either way the motions are named by structure and period, or `NM`, and
+//! coexisting motions (the flow barrier of SPEC §10) show up as a set. On
+//! the paper model's Fig. 11 range the continuation map lists every motion
+//! the simulation map lists, and sometimes more (coexistence, each extra
+//! proven: tests/map_continuation.rs).
 //!
 //! [`run_map`] computes a grid (or one shard of it, for a cluster job
-//! array) on all cores and appends each point's line to the output file as
-//! soon as it is known, so that a run killed at any moment resumes without
-//! losing or repeating a point; at the end the file is rewritten sorted by
-//! index. [`merge`] joins shard files into the file a single run would have
-//! written, byte for byte.
+//! array: the tiles whose number is `k` mod `n`) on all cores and appends
+//! each point's line to the output file as soon as its tile is known, so
+//! that a run killed at any moment resumes without losing or repeating a
+//! point (the unfinished tiles are recomputed, only their missing points
+//! written: a tile's result depends on the tile alone); at the end the
+//! file is rewritten sorted by index. [`merge`] joins shard files into the
+//! file a single run would have written, byte for byte.
 //!
 //! # File format
 //!
@@ -34,16 +55,18 @@
 //! depend on how it was computed.
 
 mod classify;
+mod continuation;
 mod error;
 mod file;
 mod grid;
 mod run;
 
 pub use classify::{classify_point, motion_label};
+pub use continuation::{classify_tile, no_motion_exists, Continuer, CONTINUATION_NEWTON};
 pub use error::{AxisError, MapError};
 pub use file::{MapFile, MapHeader, PointResult};
-pub use grid::{grid_len, GridAxis, Shard};
-pub use run::{merge, run_map, MapOptions, Summary};
+pub use grid::{grid_len, tile_count, tile_of, tile_points, GridAxis, Shard, TILE};
+pub use run::{merge, run_map, MapMethod, MapOptions, Summary};
 
 /// Forcing periods simulated at most from each start.
 pub const MAX_PERIODS: u32 = 600;
