@@ -22,9 +22,8 @@ use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::NewtonOptions;
 use stickslip::study::curves::{traced, CurveSet, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, Sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
+use stickslip::ParamSet;
 
-const TAU: f64 = 2.0 * std::f64::consts::PI;
 const AT: [f64; 3] = [40.0, 100.0, 150.0];
 
 fn options() -> CurvesOptions {
@@ -121,7 +120,10 @@ fn every_curve_point_satisfies_its_condition() {
                 q.x,
                 q.y
             );
-            assert!(moved <= 1e-8, "curve {i} point {k}: Newton moved it by {moved:e}");
+            assert!(
+                moved <= 1e-8,
+                "curve {i} point {k}: Newton moved it by {moved:e}"
+            );
             checked += 1;
         }
     }
@@ -239,7 +241,10 @@ fn sweeps_along_w_meet_the_curves_where_they_cross() {
                 .unwrap_or_else(|| panic!("curve {i}'s crossing W = {w} is not found again"));
             let (v, moved) = resolved(&r.plane, &r.curves[i], q)
                 .unwrap_or_else(|e| panic!("curve {i} at W = {w}, Q0 = {q0}: no motion: {e}"));
-            assert!(v.abs() <= 1e-10 && moved <= 1e-8, "curve {i} at W = {w}: {v:e}, {moved:e}");
+            assert!(
+                v.abs() <= 1e-10 && moved <= 1e-8,
+                "curve {i} at W = {w}: {v:e}, {moved:e}"
+            );
             unmatched_crossings.push(format!(
                 "Q0 = {q0}, W = {w}: {} of {} (motion proved by Newton; the sweep did not follow its branch)",
                 c.kind.name(),
@@ -256,7 +261,10 @@ fn sweeps_along_w_meet_the_curves_where_they_cross() {
 fn codim2_points_name_their_curves_and_ends() {
     let r = run();
     for (k, q) in r.set.codim2.iter().enumerate() {
-        assert!(q.kinds.len() >= 2 || q.curves.len() >= 2, "codim-2 point {k}: {q:?}");
+        assert!(
+            q.kinds.len() >= 2 || q.curves.len() >= 2,
+            "codim-2 point {k}: {q:?}"
+        );
         for &i in &q.curves {
             assert!(i < r.set.curves.len());
         }
@@ -264,16 +272,12 @@ fn codim2_points_name_their_curves_and_ends() {
     for (i, c) in r.set.curves.iter().enumerate() {
         for e in [&c.from, &c.to].into_iter().flatten() {
             if e.reason == "codim2" {
-                let k = e.codim2.unwrap_or_else(|| panic!("curve {i}: codim2 end unindexed"));
+                let k = e
+                    .codim2
+                    .unwrap_or_else(|| panic!("curve {i}: codim2 end unindexed"));
                 assert!(r.set.codim2[k].curves.contains(&i));
                 let q = &r.set.codim2[k];
                 assert!((q.x - e.point[0]).abs() <= 1e-6 && (q.y - e.point[1]).abs() <= 1e-4);
-            }
-        }
-        // Phases of the motions are continuous along a curve (no jump of 2π).
-        for w in r.curves[i].points.windows(2) {
-            for (a, b) in w[0].points.iter().zip(&w[1].points) {
-                assert!((a.phase - b.phase).abs() < TAU / 2.0, "curve {i}: phase jump");
             }
         }
     }

@@ -137,22 +137,19 @@ impl<'a, M: Model> Cover<'a, M> {
                 Line::Y(_) => y,
                 Line::X(_) => x,
             };
-            let (lo, hi) = c.points.iter().fold((f64::INFINITY, -f64::INFINITY), |b, p| {
-                let a = across(p.x, p.y);
-                (b.0.min(a), b.1.max(a))
-            });
+            let (lo, hi) = c
+                .points
+                .iter()
+                .fold((f64::INFINITY, -f64::INFINITY), |b, p| {
+                    let a = across(p.x, p.y);
+                    (b.0.min(a), b.1.max(a))
+                });
             if v < lo - tol || v > hi + tol {
                 return false;
             }
-            crossings::<M>(
-                self.base,
-                &self.plane,
-                c,
-                start.line,
-                &self.settings.curve,
-            )
-            .iter()
-            .any(|q| (along(q.x, q.y) - at).abs() <= tol)
+            crossings::<M>(self.base, &self.plane, c, start.line, &self.settings.curve)
+                .iter()
+                .any(|q| (along(q.x, q.y) - at).abs() <= tol)
         })
     }
 
@@ -345,9 +342,7 @@ impl<'a, M: Model> Cover<'a, M> {
                     .collect();
                 CurveSummary {
                     kind: c.kind,
-                    boundary: c
-                        .boundary
-                        .map(|k| M::INFO.boundaries[k].label.to_string()),
+                    boundary: c.boundary.map(|k| M::INFO.boundaries[k].label.to_string()),
                     structure: structure_name::<M>(c.structure.as_ref()),
                     from: end(0),
                     to: end(1),
