@@ -128,3 +128,106 @@ pub(super) fn codim2_points(plane: &Plane, curves: &[Curve]) -> Vec<Codim2Point>
     out.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bifurcation::curve::{Condition, CurveEnd, CurvePoint, Special};
+
+    const PLANE: Plane = Plane {
+        x: 0,
+        y: 1,
+        x_range: [0.0, 10.0],
+        y_range: [0.0, 100.0],
+    };
+
+    fn pt(x: f64, y: f64) -> CurvePoint {
+        CurvePoint {
+            x,
+            y,
+            points: Vec::new(),
+        }
+    }
+
+    fn curve(
+        kind: TransitionKind,
+        boundary: Option<usize>,
+        from: (f64, f64),
+        to: (f64, f64),
+    ) -> Curve {
+        Curve {
+            kind,
+            condition: Condition::Eigen(TransitionKind::Fold),
+            boundary,
+            structure: None,
+            points: vec![pt(from.0, from.1), pt(to.0, to.1)],
+            ends: vec![
+                CurveEnd {
+                    reason: CurveEndReason::BoxEdge,
+                    at: pt(from.0, from.1),
+                },
+                CurveEnd {
+                    reason: CurveEndReason::BoxEdge,
+                    at: pt(to.0, to.1),
+                },
+            ],
+            special: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn ends_at_one_place_merge_and_a_passing_curve_joins() {
+        let g = TransitionKind::Grazing;
+        let s = TransitionKind::StickOnset;
+        // Curve 0 (grazing on 1) ends at (5, 50) meeting stick onset on 1;
+        // curve 1 (stick onset on 1) ends there too, 1e-9 of the span away;
+        // curve 2 (stick onset on 1) passes straight through (5, 50);
+        // curve 3 (stick onset on 0) passes through too but on another boundary.
+        let mut c0 = curve(g, Some(1), (0.0, 0.0), (5.0, 50.0));
+        c0.ends[1].reason = CurveEndReason::Codim2 {
+            kind: s,
+            boundary: Some(1),
+        };
+        let mut c1 = curve(s, Some(1), (10.0, 100.0), (5.0 + 1e-8, 50.0));
+        c1.ends[1].reason = CurveEndReason::Codim2 {
+            kind: g,
+            boundary: Some(1),
+        };
+        let c2 = curve(s, Some(1), (0.0, 100.0), (10.0, 0.0));
+        let c3 = curve(s, Some(0), (0.0, 100.0), (10.0, 0.0));
+        // A special point elsewhere on curve 3.
+        let mut c3 = c3;
+        c3.special.push(Special {
+            index: 0,
+            kind: TransitionKind::Fold,
+            at: pt(2.0, 80.0),
+        });
+        let q = codim2_points(&PLANE, &[c0, c1, c2, c3]);
+        assert_eq!(q.len(), 2, "{q:?}");
+        // Sorted by x: the special point first.
+        assert_eq!((q[0].x, q[0].y), (2.0, 80.0));
+        assert_eq!(q[0].kinds, vec![TransitionKind::Fold, s]);
+        assert_eq!(q[0].curves, vec![3]);
+        assert_eq!(q[1].kinds, vec![g, s]);
+        assert_eq!(q[1].curves, vec![0, 1, 2]);
+    }
+
+    #[test]
+    fn distinct_places_stay_distinct() {
+        let g = TransitionKind::Grazing;
+        let mut a = curve(g, None, (0.0, 0.0), (5.0, 50.0));
+        a.ends[1].reason = CurveEndReason::Codim2 {
+            kind: TransitionKind::Fold,
+            boundary: None,
+        };
+        let mut b = curve(g, None, (10.0, 0.0), (5.0 + 1e-3, 50.0));
+        b.ends[1].reason = CurveEndReason::Codim2 {
+            kind: TransitionKind::Fold,
+            boundary: None,
+        };
+        let q = codim2_points(&PLANE, &[a, b]);
+        assert_eq!(q.len(), 2, "{q:?}");
+        assert_eq!(q[0].curves, vec![0]);
+        assert_eq!(q[1].curves, vec![1]);
+    }
+}

@@ -102,3 +102,67 @@ impl CurvesOptions {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::paper::{Paper, Params};
+
+    fn opts() -> CurvesOptions {
+        CurvesOptions {
+            x: ("W".into(), [0.2, 8.0]),
+            y: ("Q0".into(), [0.0, 180.0]),
+            seeds: Vec::new(),
+            at: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn lines_by_name_and_inside_the_box() {
+        let o = opts();
+        assert_eq!(o.line("--seed", "Q0", 70.0), Ok(Line::Y(70.0)));
+        assert_eq!(o.line("--at", "W", 8.0), Ok(Line::X(8.0)));
+        assert!(matches!(
+            o.line("--seed", "d", 0.1),
+            Err(CurvesError::LineParam { .. })
+        ));
+        for v in [-1.0, 180.5, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                o.line("--at", "Q0", v),
+                Err(CurvesError::LineOutside { .. })
+            ));
+        }
+    }
+
+    #[test]
+    fn the_plane_is_checked() {
+        let base = Params::default();
+        let p = opts().plane::<Paper>(&base).expect("valid");
+        assert_eq!(p.x_range, [0.2, 8.0]);
+        assert_ne!(p.x, p.y);
+        let mut o = opts();
+        o.y.0 = "W".into();
+        assert_eq!(
+            o.plane::<Paper>(&base),
+            Err(CurvesError::SameParam("W".into()))
+        );
+        let mut o = opts();
+        o.x.0 = "nope".into();
+        assert!(matches!(
+            o.plane::<Paper>(&base),
+            Err(CurvesError::UnknownParam { .. })
+        ));
+        let mut o = opts();
+        o.x.1 = [3.0, 3.0];
+        assert!(matches!(
+            o.plane::<Paper>(&base),
+            Err(CurvesError::Range { .. })
+        ));
+        let mut o = opts();
+        o.seeds.push(Line::X(9.0));
+        assert!(matches!(
+            o.plane::<Paper>(&base),
+            Err(CurvesError::LineOutside { .. })
+        ));
+    }
+}
