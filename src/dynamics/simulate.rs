@@ -266,6 +266,24 @@ impl<M: Model> Simulator<M> {
         })
     }
 
+    /// Move to parameters `p` (checked), reusing the storage: no
+    /// allocation (a continuation in parameters evaluates many).
+    pub fn set_params(&mut self, p: M::Params) -> Result<(), SimError> {
+        p.check()?;
+        for (j, c) in self.coefficients.iter_mut().enumerate() {
+            *c = M::coefficients(&p, j);
+        }
+        for (k, v) in self.velocities.iter_mut().enumerate() {
+            *v = M::boundary_velocity(&p, k);
+        }
+        self.stick = M::INFO
+            .stick_boundary()
+            .and_then(|k| M::static_bound(&p).map(|s| (k, s)));
+        self.osc = M::oscillator(&p);
+        self.p = p;
+        Ok(())
+    }
+
     /// The parameters.
     pub fn params(&self) -> &M::Params {
         &self.p

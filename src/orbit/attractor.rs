@@ -206,6 +206,44 @@ pub fn mapping_between<M: Model>(before: &Event, after: &Event) -> Option<usize>
     }
 }
 
+/// The steady forced response of domain `j` (its particular solution):
+/// `x(φ) = a cos φ + b sin φ + offset`, `v(φ) = W (−a sin φ + b cos φ)`
+/// with `φ = W t`, so that its velocity ranges over `±W √(a² + b²)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SteadyResponse {
+    /// The cosine coefficient.
+    pub a: f64,
+    /// The sine coefficient.
+    pub b: f64,
+    /// The constant part, `−b_j / c_j`.
+    pub offset: f64,
+    /// The largest velocity, `W √(a² + b²)` (the smallest is its negative).
+    pub max_v: f64,
+}
+
+/// The steady forced response of domain `j` at `p` (closed form), or
+/// `None` if the domain is not damped (`2d <= 0` or NaN: no steady response
+/// attracts).
+pub fn steady_response<M: Model>(p: &M::Params, j: usize) -> Option<SteadyResponse> {
+    let co = M::coefficients(p, j);
+    let osc = M::oscillator(p);
+    let d = 0.5 * co.two_d;
+    let c = co.c;
+    if d.is_nan() || d <= 0.0 {
+        return None;
+    }
+    let w = osc.frequency;
+    let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
+    let a = osc.amplitude * (c - w * w) / den;
+    let b = 2.0 * d * w * osc.amplitude / den;
+    Some(SteadyResponse {
+        a,
+        b,
+        offset: -co.b / c,
+        max_v: w * a.hypot(b),
+    })
+}
+
 /// Certificate that the motion in domain `j` from `(x, v, phase)` never
 /// reaches the domain's boundaries: the forced response plus a bound on the
 /// decaying homogeneous part stays strictly inside the band.
@@ -219,16 +257,10 @@ pub fn no_motion_certificate<M: Model>(
     let p = sim.params();
     let co = M::coefficients(p, j);
     let osc = sim.oscillator();
-    let d = 0.5 * co.two_d;
-    let c = co.c;
-    if d.is_nan() || d <= 0.0 {
-        return None;
-    }
+    let SteadyResponse { a, b, offset, .. } = steady_response::<M>(p, j)?;
+    let (d, c) = (0.5 * co.two_d, co.c);
     let w = osc.frequency;
-    let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
-    let a = osc.amplitude * (c - w * w) / den;
-    let b = 2.0 * d * w * osc.amplitude / den;
-    let xp = a * phase.cos() + b * phase.sin() - co.b / c;
+    let xp = a * phase.cos() + b * phase.sin() + offset;
     let vp = w * (-a * phase.sin() + b * phase.cos());
     let (x0, y0) = (x - xp, v - vp);
     let w2 = d * d - c;

@@ -8,8 +8,18 @@
 //! followed both ways to the box's edge, back to itself, or to a
 //! codimension-two point where a second condition vanishes too.
 
+mod condition;
+mod crossing;
+pub mod extended;
+mod start;
+mod trace;
+
+pub use condition::condition_scale;
+pub use crossing::crossings;
+pub use extended::Extended;
+pub use start::{condition_at_transition, condition_value, system, trace, unknowns};
+
 use crate::bifurcation::TransitionKind;
-use crate::model::Model;
 use crate::orbit::admissible::ViolationKind;
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::structure::Structure;
@@ -181,56 +191,3 @@ pub enum CurveError {
     Condition(String),
 }
 
-/// Trace the curve through `start` on which `condition` of the motion of
-/// `structure` vanishes, both ways, in `plane` (every other parameter from
-/// `base`). `start` need only be close: it is corrected first.
-pub fn trace<M: Model>(
-    base: &M::Params,
-    plane: &Plane,
-    structure: Option<&Structure>,
-    start: &CurvePoint,
-    condition: Condition,
-    opts: &CurveOptions,
-) -> Result<Curve, CurveError> {
-    let _ = (base, plane, structure, start, condition, opts);
-    Err(CurveError::Options("not built yet".into()))
-}
-
-/// The condition's value at `point` (the motion's switching points given,
-/// not corrected): zero on the curve. For tests and checks.
-pub fn condition_value<M: Model>(
-    base: &M::Params,
-    plane: &Plane,
-    structure: Option<&Structure>,
-    point: &CurvePoint,
-    condition: Condition,
-) -> Result<f64, CurveError> {
-    let _ = (base, plane, structure, point, condition);
-    Err(CurveError::Options("not built yet".into()))
-}
-
-/// Where `curve` crosses `line`, each crossing solved exactly (the curve's
-/// equations with the line's parameter fixed), in curve order.
-pub fn crossings<M: Model>(
-    base: &M::Params,
-    plane: &Plane,
-    curve: &Curve,
-    line: Line,
-    opts: &CurveOptions,
-) -> Vec<CurvePoint> {
-    let _ = (base, plane, curve, line, opts);
-    Vec::new()
-}
-
-/// Which condition vanishes at a transition of kind `kind` located on a
-/// branch of `structure` at parameters `p` with switching points `points`
-/// (for a non-smooth kind: the smallest admissibility margin there).
-pub fn condition_at_transition<M: Model>(
-    p: &M::Params,
-    structure: &Structure,
-    points: &[SwitchingPoint],
-    kind: TransitionKind,
-) -> Option<Condition> {
-    let _ = (p, structure, points, kind);
-    None
-}

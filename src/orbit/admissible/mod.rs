@@ -18,8 +18,8 @@ use crate::orbit::structure::Structure;
 
 mod sink;
 
-pub use sink::{Margin, Violation, ViolationKind, SAME_EVENT};
-use sink::{Sink, Violated, Worst};
+pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
+use sink::{Except, Only, Sink, Violated, Worst};
 
 /// Tolerance on phases when comparing a simulated event with a switching point.
 fn phase_tol(phase: f64) -> f64 {
@@ -352,6 +352,43 @@ pub fn worst_margin<M: Model>(
     worst.result()
 }
 
+/// The margin of the one condition `(kind, segment, boundary)` of
+/// [`conditions`] (the smallest if several match; NaN: not evaluable),
+/// `None` if the walk does not evaluate it at these points. No text, no
+/// allocation: the condition of a two-parameter curve.
+pub(crate) fn margin_of<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    (kind, segment, boundary): (ViolationKind, usize, Option<usize>),
+) -> Option<f64> {
+    let mut only = Only {
+        kind,
+        segment,
+        boundary,
+        margin: None,
+    };
+    walk(sim, structure, points, &mut only);
+    only.margin
+}
+
+/// [`worst_margin`] over every condition but the `excluded` ones (a
+/// two-parameter curve's own condition and those that vanish with it):
+/// what ends that curve. No text, no allocation.
+pub(crate) fn worst_margin_except<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    excluded: &[ConditionId],
+) -> Option<Margin> {
+    let mut except = Except {
+        excluded,
+        worst: Worst::default(),
+    };
+    walk(sim, structure, points, &mut except);
+    except.worst.result()
+}
+
 fn walk<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
@@ -363,6 +400,8 @@ fn walk<M: Model>(
     let m = points.len();
     let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
     let label = |k: usize| info.boundaries[k].label;
+    // Each margin as a smooth function of the points: no event search.
+    let smooth = out.smooth();
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
         let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
@@ -504,7 +543,7 @@ fn walk<M: Model>(
                 // the closed form when every margin is clear of zero, else
                 // the event search decides.
                 let event = match &check {
-                    Some(c) if c.arrives => None,
+                    Some(c) if c.arrives || smooth => None,
                     _ => Some(sim.next_event(&seg, b.phase + phase_tol(b.phase))),
                 };
                 let tol = phase_tol(b.phase);

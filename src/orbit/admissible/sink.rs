@@ -69,6 +69,15 @@ pub(super) trait Sink {
         margin: f64,
         text: impl FnOnce() -> String,
     );
+
+    /// Whether the margins are wanted as smooth functions of the points
+    /// (a curve's condition): the arrival is taken as the first boundary
+    /// contact without the event search, so that the interior margin is
+    /// always the closed form's, never replaced by the depth of an early
+    /// contact or by a missing arrival.
+    fn smooth(&self) -> bool {
+        false
+    }
 }
 
 impl Sink for Vec<Violation> {
@@ -172,5 +181,62 @@ impl Sink for Worst {
             Self::keep(&mut self.force, m);
         }
         Self::keep(&mut self.smallest, m);
+    }
+}
+
+/// One condition alone, picked by its kind, segment and boundary: the
+/// smallest margin among the matching ones (a two-parameter curve's
+/// condition, `bifurcation::curve`).
+pub(super) struct Only {
+    pub(super) kind: ViolationKind,
+    pub(super) segment: usize,
+    pub(super) boundary: Option<usize>,
+    pub(super) margin: Option<f64>,
+}
+
+impl Sink for Only {
+    fn smooth(&self) -> bool {
+        true
+    }
+
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        _text: impl FnOnce() -> String,
+    ) {
+        if kind == self.kind && segment == self.segment && boundary == self.boundary {
+            let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+            if self.margin.is_none_or(|w| key(margin) < key(w)) {
+                self.margin = Some(margin);
+            }
+        }
+    }
+}
+
+/// A condition's identity: kind, segment, boundary.
+pub type ConditionId = (ViolationKind, usize, Option<usize>);
+
+/// The smallest margin (named as [`Worst`] names it) of every condition but
+/// the excluded ones.
+pub(super) struct Except<'a> {
+    pub(super) excluded: &'a [ConditionId],
+    pub(super) worst: Worst,
+}
+
+impl Sink for Except<'_> {
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        text: impl FnOnce() -> String,
+    ) {
+        if !self.excluded.contains(&(kind, segment, boundary)) {
+            self.worst.add(segment, kind, boundary, margin, text);
+        }
     }
 }

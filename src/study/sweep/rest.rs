@@ -15,18 +15,9 @@ use super::{with, SweepOptions, Transition, TransitionKind};
 /// that stays inside the band.
 pub(super) fn steady_nm<M: Model>(sim: &Simulator<M>, domain: usize) -> Option<NoMotion> {
     // On the forced response itself the homogeneous part is zero.
-    let p = sim.params();
-    let co = M::coefficients(p, domain);
-    if co.two_d <= 0.0 {
-        return None;
-    }
-    let osc = sim.oscillator();
-    let (d, c, w) = (0.5 * co.two_d, co.c, osc.frequency);
-    let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
-    let a = osc.amplitude * (c - w * w) / den;
-    let b = 2.0 * d * w * osc.amplitude / den;
-    let x = a - co.b / c;
-    let v = w * b;
+    let r = attractor::steady_response::<M>(sim.params(), domain)?;
+    let x = r.a + r.offset;
+    let v = sim.oscillator().frequency * r.b;
     attractor::no_motion_certificate(sim, domain, x, v, 0.0)
 }
 

@@ -1,0 +1,285 @@
+//! Each condition of a curve as a function of the switching points and the
+//! parameters (zero on the curve), and what else is watched along it: the
+//! margin of every other admissibility condition (a codimension-two end
+//! where it vanishes) and the eigenvalue test functions.
+//!
+//! * `Margin`: the margin of exactly that condition of SPEC §6, as
+//!   [`crate::orbit::admissible::conditions`] computes it (the smallest of
+//!   the matching entries), in the quantity's unit (a velocity, an
+//!   acceleration, a force or a phase).
+//! * `Eigen(Fold)` and `Eigen(BranchPoint)`: `det(I − DP)`;
+//!   `Eigen(PeriodDoubling)`: `det(I + DP)`; `Eigen(NeimarkSacker)`:
+//!   `det DP − 1` (dimensionless; the pair's being complex is watched along
+//!   the curve, not imposed).
+//! * `RestGrazing`: the velocity margin of the no-motion regime's steady
+//!   forced response ([`crate::orbit::attractor::steady_response`]) to the
+//!   boundary: `v_b − max v` when the boundary bounds the domain above,
+//!   `min v − v_b` below. The domain is the neighbour of the boundary whose
+//!   margin is the smaller in magnitude at the curve's start.
+
+use nalgebra::Matrix2;
+
+use super::Condition;
+use crate::bifurcation::TransitionKind;
+use crate::dynamics::simulate::{SimOptions, Simulator};
+use crate::model::Model;
+use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
+use crate::orbit::attractor::steady_response;
+use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::structure::Structure;
+
+/// `(tr DP, det DP)` of the motion, `None` where a mapping's arrival is singular.
+pub(super) fn trace_det<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> Option<Matrix2<f64>> {
+    let m = points.len();
+    let mut dp = Matrix2::identity();
+    for k in 0..m {
+        let a = points[k];
+        let b = if k + 1 < m {
+            points[k + 1]
+        } else {
+            SwitchingPoint {
+                phase: points[0].phase + shift,
+                x: points[0].x,
+            }
+        };
+        let e = M::mapping(p, steps[k], a.x, a.phase, b.x, b.phase);
+        dp = e.local_jacobian()? * dp;
+    }
+    Some(dp)
+}
+
+/// The value of an eigenvalue test function at `dp`.
+pub(super) fn eigen_value(kind: TransitionKind, dp: &Matrix2<f64>) -> f64 {
+    let (tr, det) = (dp.trace(), dp.determinant());
+    match kind {
+        TransitionKind::PeriodDoubling => 1.0 + tr + det,
+        TransitionKind::NeimarkSacker => det - 1.0,
+        _ => 1.0 - tr + det,
+    }
+}
+
+/// The margin of the no-motion regime of domain `j` to boundary `k`
+/// (positive: the steady response stays off it); NaN if there is none.
+pub(super) fn rest_margin<M: Model>(p: &M::Params, j: usize, k: usize) -> f64 {
+    let Some(r) = steady_response::<M>(p, j) else {
+        return f64::NAN;
+    };
+    let vb = M::boundary_velocity(p, k);
+    let dom = M::INFO.domains[j];
+    if dom.upper == Some(k) {
+        vb - r.max_v
+    } else {
+        -r.max_v - vb
+    }
+}
+
+/// The domains next to boundary `k`.
+pub(super) fn neighbours<M: Model>(k: usize) -> impl Iterator<Item = usize> {
+    M::INFO
+        .domains
+        .iter()
+        .enumerate()
+        .filter(move |(_, d)| d.lower == Some(k) || d.upper == Some(k))
+        .map(|(j, _)| j)
+}
+
+/// Evaluates one condition (and the watched quantities) at many points,
+/// with one simulator reused: no allocation per evaluation.
+#[derive(Clone, Debug)]
+pub(super) struct Evaluator<M: Model> {
+    pub condition: Condition,
+    pub structure: Option<Structure>,
+    pub steps: Vec<usize>,
+    pub shift: f64,
+    /// The no-motion regime's domain of a `RestGrazing` condition.
+    pub rest_domain: usize,
+    pub sim: Simulator<M>,
+    /// The conditions left out of [`Self::other`] (the curve's own and
+    /// those that vanish with it), the first `excluded_len`.
+    excluded: [ConditionId; 8],
+    excluded_len: usize,
+}
+
+/// At most this many conditions vanish with a curve's own.
+const MAX_EXCLUDED: usize = 8;
+
+impl<M: Model> Evaluator<M> {
+    /// The evaluator at parameters `p` (which must be valid).
+    pub fn new(
+        condition: Condition,
+        structure: Option<&Structure>,
+        p: &M::Params,
+        rest_domain: usize,
+    ) -> Result<Self, String> {
+        let sim = Simulator::<M>::new(*p, SimOptions::default()).map_err(|e| e.to_string())?;
+        Ok(Self {
+            condition,
+            steps: structure.map_or(Vec::new(), |s| s.steps().to_vec()),
+            shift: std::f64::consts::TAU * structure.map_or(1, |s| s.periods()) as f64,
+            structure: structure.cloned(),
+            rest_domain,
+            sim,
+            excluded: [(ViolationKind::Other, usize::MAX, None); MAX_EXCLUDED],
+            excluded_len: match condition {
+                Condition::Margin { .. } => 1,
+                _ => 0,
+            },
+        })
+        .map(|mut e: Self| {
+            if let Condition::Margin {
+                kind,
+                segment,
+                boundary,
+            } = condition
+            {
+                e.excluded[0] = (kind, segment, boundary);
+            }
+            e
+        })
+    }
+
+    /// Leave out of [`Self::other`] every condition that vanishes with the
+    /// curve's own at `(points, p)` (a point of the curve): margin within
+    /// [`SAME_EVENT`] of zero (absolute, in the quantity's unit). A
+    /// transition where a segment shrinks to nothing makes its duration,
+    /// its departure and arrival and the force criteria there vanish
+    /// together, all along the curve: they are one event, not a
+    /// codimension-two point.
+    pub fn exclude_companions(&mut self, p: &M::Params, points: &[SwitchingPoint]) {
+        let (Condition::Margin { .. }, Some(structure)) = (self.condition, &self.structure) else {
+            return;
+        };
+        if self.sim.set_params(*p).is_err() {
+            return;
+        }
+        for c in admissible::conditions(&self.sim, structure, points) {
+            let id = (c.kind, c.segment, c.boundary);
+            if c.margin.abs() <= SAME_EVENT
+                && self.excluded_len < MAX_EXCLUDED
+                && !self.excluded[..self.excluded_len].contains(&id)
+            {
+                self.excluded[self.excluded_len] = id;
+                self.excluded_len += 1;
+            }
+        }
+    }
+
+    /// The condition's value at `(points, p)`: zero on the curve, NaN
+    /// where it cannot be evaluated.
+    pub fn value(&mut self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
+        match self.condition {
+            Condition::Eigen(kind) => trace_det::<M>(p, &self.steps, self.shift, points)
+                .map_or(f64::NAN, |dp| eigen_value(kind, &dp)),
+            Condition::Margin {
+                kind,
+                segment,
+                boundary,
+            } => {
+                let Some(structure) = &self.structure else {
+                    return f64::NAN;
+                };
+                if self.sim.set_params(*p).is_err() {
+                    return f64::NAN;
+                }
+                admissible::margin_of(&self.sim, structure, points, (kind, segment, boundary))
+                    .unwrap_or(f64::NAN)
+            }
+            Condition::RestGrazing { boundary } => {
+                rest_margin::<M>(p, self.rest_domain, boundary)
+            }
+        }
+    }
+
+    /// The smallest margin of the conditions that must hold along the curve
+    /// besides its own (NaN counts as −∞), with the condition's kind and
+    /// boundary: for a `Margin` curve every other condition of the motion
+    /// (those that vanish with it left out, see [`Self::exclude_companions`]); for an `Eigen` curve every
+    /// condition; for `RestGrazing` the domain's other boundary.
+    pub fn other(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> (f64, Option<(ViolationKind, Option<usize>)>) {
+        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+        if let Condition::RestGrazing { boundary } = self.condition {
+            let dom = M::INFO.domains[self.rest_domain];
+            return [dom.lower, dom.upper]
+                .into_iter()
+                .flatten()
+                .filter(|&k| k != boundary)
+                .map(|k| {
+                    (
+                        key(rest_margin::<M>(p, self.rest_domain, k)),
+                        Some((ViolationKind::Interior, Some(k))),
+                    )
+                })
+                .fold((f64::INFINITY, None), |a, b| if b.0 < a.0 { b } else { a });
+        }
+        let Some(structure) = &self.structure else {
+            return (f64::NEG_INFINITY, None);
+        };
+        if self.sim.set_params(*p).is_err() {
+            return (f64::NEG_INFINITY, None);
+        }
+        let worst = match self.condition {
+            Condition::Margin { .. } => admissible::worst_margin_except(
+                &self.sim,
+                structure,
+                points,
+                &self.excluded[..self.excluded_len],
+            ),
+            _ => admissible::worst_margin(&self.sim, structure, points),
+        };
+        match worst {
+            Some(w) => (key(w.margin), Some((w.kind, w.boundary))),
+            None => (f64::INFINITY, None),
+        }
+    }
+}
+
+/// The scale of a condition's value at `p`: what `|g|` is compared with
+/// (velocities over the boundaries' velocities and `L W`, forces and
+/// accelerations over the forcing amplitude and the static bound, phases
+/// over 2π, test functions over `1 + |tr DP| + |det DP|`).
+pub fn condition_scale<M: Model>(
+    p: &M::Params,
+    condition: Condition,
+    structure: Option<&Structure>,
+    points: &[SwitchingPoint],
+) -> f64 {
+    let osc = M::oscillator(p);
+    let w = osc.frequency.abs();
+    let mut v = 0.0f64;
+    for k in 0..M::INFO.boundaries.len() {
+        v = v.max(M::boundary_velocity(p, k).abs());
+    }
+    match condition {
+        Condition::Eigen(_) => {
+            let steps = structure.map_or(&[][..], |s| s.steps());
+            let shift = std::f64::consts::TAU * structure.map_or(1, |s| s.periods()) as f64;
+            trace_det::<M>(p, steps, shift, points)
+                .map_or(1.0, |dp| 1.0 + dp.trace().abs() + dp.determinant().abs())
+        }
+        Condition::RestGrazing { .. } => {
+            let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
+            v.max(l * w).max(1e-300)
+        }
+        Condition::Margin { kind, .. } => match kind {
+            ViolationKind::Duration => std::f64::consts::TAU,
+            ViolationKind::Interior => {
+                let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
+                v.max(l * w).max(1e-300)
+            }
+            _ => {
+                let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
+                let s = M::static_bound(p).unwrap_or(0.0).abs();
+                (osc.amplitude.abs() + osc.stiffness.abs() * l + s + w * v).max(1e-300)
+            }
+        },
+    }
+}

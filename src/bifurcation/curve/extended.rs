@@ -1,0 +1,467 @@
+//! The extended system of a curve: the motion's mapping equations, the
+//! condition and one border row, with both parameters free, solved by a
+//! dense LU on a preallocated workspace (no allocation after construction).
+//!
+//! Unknowns `X = (x_0, W t_0, …, x_{m−1}, W t_{m−1}, λx, λy)` (`n = 2m + 2`;
+//! periodicity substituted as in [`crate::bifurcation::bordered`]).
+//! Equations: the `2m` mapping residuals `f_k(u_k, u_{k+1}, λ) = 0`, the
+//! condition `g(u, λ) = 0` and the border row `⟨b, X − A⟩ = 0` (the
+//! pseudo-arclength hyperplane, or one parameter fixed). `∂f/∂u` are the
+//! exact generated blocks; `∂f/∂λ` and the whole gradient `∇g` are central
+//! differences (step `1e-6` times the unknown's scale: the motion's length
+//! scale `L` for displacements, 1 for phases, `max(1, |λ|)` for the
+//! parameters). They enter only the Newton direction and the tangent, never
+//! the residuals, so the points solve the equations exactly.
+//!
+//! The metric (inner products, distances, step sizes) is that of
+//! [`crate::bifurcation::bordered`]: displacements over `L`, phases in
+//! radians, each switching point weighted `1/m`, each parameter over its
+//! range's span. A dense LU costs `O(n³)`, nothing for the small `m` of a
+//! motion next to the `4n` evaluations of `g` that `∇g` takes.
+
+use crate::bifurcation::bordered::Correction;
+use crate::model::{Model, ParamSet};
+use crate::orbit::periodic::SwitchingPoint;
+
+use super::condition::Evaluator;
+use super::Plane;
+
+/// The extended system of one curve, with its workspace.
+#[derive(Clone, Debug)]
+pub struct Extended<M: Model> {
+    base: M::Params,
+    plane: Plane,
+    m: usize,
+    n: usize,
+    /// Length scale `L` of displacements.
+    pub length: f64,
+    spans: [f64; 2],
+    metric: Vec<f64>,
+    pub(super) eval: Evaluator<M>,
+    jac: Vec<f64>,
+    rhs: Vec<f64>,
+    delta: Vec<f64>,
+    pts: Vec<SwitchingPoint>,
+    trial: Vec<f64>,
+}
+
+impl<M: Model> Extended<M> {
+    pub(super) fn new(base: M::Params, plane: Plane, length: f64, eval: Evaluator<M>) -> Self {
+        let m = eval.steps.len();
+        let n = 2 * m + 2;
+        let spans = [
+            plane.x_range[1] - plane.x_range[0],
+            plane.y_range[1] - plane.y_range[0],
+        ];
+        let mut metric = vec![0.0; n];
+        let w = if m > 0 { 1.0 / m as f64 } else { 0.0 };
+        for k in 0..m {
+            metric[2 * k] = w / (length * length);
+            metric[2 * k + 1] = w;
+        }
+        metric[n - 2] = 1.0 / (spans[0] * spans[0]);
+        metric[n - 1] = 1.0 / (spans[1] * spans[1]);
+        Self {
+            base,
+            plane,
+            m,
+            n,
+            length,
+            spans,
+            metric,
+            eval,
+            jac: vec![0.0; n * n],
+            rhs: vec![0.0; n],
+            delta: vec![0.0; n],
+            pts: vec![SwitchingPoint { phase: 0.0, x: 0.0 }; m],
+            trial: vec![0.0; n],
+        }
+    }
+
+    /// The number of unknowns `2m + 2`.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Never empty (the two parameters are unknowns).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The parameters at `x` (a copy of the base with both set).
+    pub fn params(&self, x: &[f64]) -> M::Params {
+        let mut p = self.base;
+        p.set(self.plane.x, x[self.n - 2]);
+        p.set(self.plane.y, x[self.n - 1]);
+        p
+    }
+
+    /// The switching points of `x` into `out`.
+    pub fn points_into(x: &[f64], out: &mut [SwitchingPoint]) {
+        for (k, q) in out.iter_mut().enumerate() {
+            *q = SwitchingPoint {
+                x: x[2 * k],
+                phase: x[2 * k + 1],
+            };
+        }
+    }
+
+    fn load(&mut self, x: &[f64]) {
+        Self::points_into(x, &mut self.pts);
+    }
+
+    /// The spans of the two parameters' ranges.
+    pub fn spans(&self) -> [f64; 2] {
+        self.spans
+    }
+
+    /// `⟨a, b⟩` in the scaled metric.
+    pub fn dot(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter()
+            .zip(b)
+            .zip(&self.metric)
+            .map(|((x, y), w)| w * x * y)
+            .sum()
+    }
+
+    /// `⟨b, x − y⟩` in the scaled metric.
+    pub fn dot_diff(&self, b: &[f64], x: &[f64], y: &[f64]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..self.n {
+            s += self.metric[i] * b[i] * (x[i] - y[i]);
+        }
+        s
+    }
+
+    /// `|x − y|` in the scaled metric.
+    pub fn distance(&self, x: &[f64], y: &[f64]) -> f64 {
+        let mut s = 0.0;
+        for i in 0..self.n {
+            s += self.metric[i] * (x[i] - y[i]).powi(2);
+        }
+        s.sqrt()
+    }
+
+    /// Normalize `v` to unit length in the scaled metric.
+    pub fn normalize(&self, v: &mut [f64]) {
+        let n = self.dot(v, v).sqrt();
+        if n > 0.0 && n.is_finite() {
+            v.iter_mut().for_each(|c| *c /= n);
+        }
+    }
+
+    /// The unit vector along parameter `axis` (0: x, 1: y) in the metric.
+    pub fn axis(&self, axis: usize, out: &mut [f64]) {
+        out.iter_mut().for_each(|c| *c = 0.0);
+        out[self.n - 2 + axis] = self.spans[axis];
+    }
+
+    /// The condition's value at `x`.
+    pub fn condition(&mut self, x: &[f64]) -> f64 {
+        let p = self.params(x);
+        self.load(x);
+        self.eval.value(&p, &self.pts)
+    }
+
+    /// The largest mapping residual at `x` (NaN propagates).
+    pub fn mapping_residual(&self, x: &[f64]) -> f64 {
+        let p = self.params(x);
+        let mut r = 0.0f64;
+        for k in 0..self.m {
+            let (a, b) = self.ends(x, k);
+            let f = M::residual(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
+            for v in f.iter() {
+                if v.is_nan() {
+                    return f64::NAN;
+                }
+                r = r.max(v.abs());
+            }
+        }
+        r
+    }
+
+    #[inline]
+    fn ends(&self, x: &[f64], k: usize) -> (SwitchingPoint, SwitchingPoint) {
+        let a = SwitchingPoint {
+            x: x[2 * k],
+            phase: x[2 * k + 1],
+        };
+        let b = if k + 1 < self.m {
+            SwitchingPoint {
+                x: x[2 * k + 2],
+                phase: x[2 * k + 3],
+            }
+        } else {
+            SwitchingPoint {
+                x: x[0],
+                phase: x[1] + self.eval.shift,
+            }
+        };
+        (a, b)
+    }
+
+    /// The finite-difference step of unknown `i` at `x`.
+    fn fd_step(&self, x: &[f64], i: usize) -> f64 {
+        if i >= 2 * self.m {
+            1e-6 * x[i].abs().max(1.0)
+        } else if i % 2 == 0 {
+            1e-6 * self.length
+        } else {
+            1e-6
+        }
+    }
+
+    /// The Jacobian of the mapping equations and the condition at `x`
+    /// (rows `0..2m+1`, row-major, `n` columns) into the workspace, the
+    /// residuals (mapping equations, then the condition) into `rhs`
+    /// (negated). Returns the largest mapping residual; `Err` if a value is
+    /// not finite.
+    fn assemble(&mut self, x: &[f64]) -> Result<f64, String> {
+        let (n, m) = (self.n, self.m);
+        self.jac.iter_mut().for_each(|c| *c = 0.0);
+        let p = self.params(x);
+        let mut r = 0.0f64;
+        let hl = [self.fd_step(x, n - 2), self.fd_step(x, n - 1)];
+        let mut pl = [[p; 2]; 2];
+        for (axis, h) in hl.iter().enumerate() {
+            let idx = if axis == 0 { self.plane.x } else { self.plane.y };
+            pl[axis][0].set(idx, x[n - 2 + axis] + h);
+            pl[axis][1].set(idx, x[n - 2 + axis] - h);
+        }
+        for k in 0..m {
+            let (a, b) = self.ends(x, k);
+            let step = self.eval.steps[k];
+            let ev = M::mapping(&p, step, a.x, a.phase, b.x, b.phase);
+            let next = (k + 1) % m;
+            for row in 0..2 {
+                let ri = (2 * k + row) * n;
+                for col in 0..2 {
+                    self.jac[ri + 2 * k + col] += ev.d_prev[(row, col)];
+                    self.jac[ri + 2 * next + col] += ev.d_next[(row, col)];
+                }
+                self.rhs[2 * k + row] = -ev.residual[row];
+                let v = ev.residual[row];
+                r = if v.is_nan() || r.is_nan() {
+                    f64::NAN
+                } else {
+                    r.max(v.abs())
+                };
+            }
+            for axis in 0..2 {
+                let fp = M::residual(&pl[axis][0], step, a.x, a.phase, b.x, b.phase);
+                let fm = M::residual(&pl[axis][1], step, a.x, a.phase, b.x, b.phase);
+                for row in 0..2 {
+                    self.jac[(2 * k + row) * n + n - 2 + axis] =
+                        (fp[row] - fm[row]) / (2.0 * hl[axis]);
+                }
+            }
+        }
+        // The condition's row: its value and central differences.
+        let g = self.condition(x);
+        self.rhs[2 * m] = -g;
+        if !g.is_finite() {
+            return Err(format!("the condition is not finite ({g:e})"));
+        }
+        let mut trial = std::mem::take(&mut self.trial);
+        trial.copy_from_slice(x);
+        for i in 0..n {
+            // Central differences; where the condition is not defined on
+            // one side at this step (a short segment reversed), smaller
+            // steps, then a one-sided difference.
+            let mut d = f64::NAN;
+            let mut h = self.fd_step(x, i);
+            for _ in 0..3 {
+                trial[i] = x[i] + h;
+                let gp = self.condition(&trial);
+                trial[i] = x[i] - h;
+                let gm = self.condition(&trial);
+                d = if gp.is_finite() && gm.is_finite() {
+                    (gp - gm) / (2.0 * h)
+                } else if gp.is_finite() {
+                    (gp - g) / h
+                } else if gm.is_finite() {
+                    (g - gm) / h
+                } else {
+                    f64::NAN
+                };
+                if gp.is_finite() && gm.is_finite() {
+                    break;
+                }
+                h *= 1e-2;
+            }
+            trial[i] = x[i];
+            self.jac[2 * m * n + i] = d;
+        }
+        self.trial = trial;
+        if !g.is_finite() {
+            return Err(format!("the condition is not finite ({g:e})"));
+        }
+        if let Some(i) = self.jac[..(2 * m + 1) * n]
+            .iter()
+            .position(|v| !v.is_finite())
+        {
+            let (row, col) = (i / n, i % n);
+            return Err(if row == 2 * m {
+                format!("the condition's derivative in unknown {col} is not finite (the condition is not defined on both sides)")
+            } else {
+                format!("mapping {}'s derivative in unknown {col} is not finite", row / 2)
+            });
+        }
+        Ok(r)
+    }
+
+    /// The Jacobian of the mapping equations and the condition at `x`
+    /// (`(2m + 1) × n`, row-major): for checks.
+    pub fn jacobian(&mut self, x: &[f64]) -> Result<&[f64], String> {
+        self.assemble(x)?;
+        Ok(&self.jac[..(2 * self.m + 1) * self.n])
+    }
+
+    /// The mapping residuals and the condition at `x` into `out` (`2m + 1`).
+    pub fn residuals(&mut self, x: &[f64], out: &mut [f64]) {
+        let p = self.params(x);
+        for k in 0..self.m {
+            let (a, b) = self.ends(x, k);
+            let f = M::residual(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
+            out[2 * k] = f[0];
+            out[2 * k + 1] = f[1];
+        }
+        out[2 * self.m] = self.condition(x);
+    }
+
+    /// Set the border row (`⟨border, δX⟩ = rhs` in the metric) and solve
+    /// the system in place (row equilibration, partial pivoting); the
+    /// solution is left in `self.delta`.
+    fn solve(&mut self, border: &[f64], rhs: f64) -> Result<(), String> {
+        let n = self.n;
+        let last = (n - 1) * n;
+        for i in 0..n {
+            self.jac[last + i] = self.metric[i] * border[i];
+        }
+        self.rhs[n - 1] = rhs;
+        for i in 0..n {
+            let row = &mut self.jac[i * n..(i + 1) * n];
+            let s = row.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if !(s > 0.0 && s.is_finite()) {
+                return Err(format!("row {i} of the extended system is zero"));
+            }
+            row.iter_mut().for_each(|v| *v /= s);
+            self.rhs[i] /= s;
+        }
+        for col in 0..n {
+            let mut piv = col;
+            for i in col + 1..n {
+                if self.jac[i * n + col].abs() > self.jac[piv * n + col].abs() {
+                    piv = i;
+                }
+            }
+            let pv = self.jac[piv * n + col];
+            if pv.abs() <= 1e-14 || !pv.is_finite() {
+                return Err("the extended system is singular".into());
+            }
+            if piv != col {
+                for j in 0..n {
+                    self.jac.swap(piv * n + j, col * n + j);
+                }
+                self.rhs.swap(piv, col);
+            }
+            for i in col + 1..n {
+                let f = self.jac[i * n + col] / pv;
+                if f != 0.0 {
+                    for j in col..n {
+                        self.jac[i * n + j] -= f * self.jac[col * n + j];
+                    }
+                    self.rhs[i] -= f * self.rhs[col];
+                }
+            }
+        }
+        for i in (0..n).rev() {
+            let mut s = self.rhs[i];
+            for j in i + 1..n {
+                s -= self.jac[i * n + j] * self.delta[j];
+            }
+            self.delta[i] = s / self.jac[i * n + i];
+        }
+        if self.delta.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err("the extended system's solution is not finite".into())
+        }
+    }
+
+    /// The unit tangent at `x` (mapping equations and condition
+    /// linearized, `⟨prev, t⟩ = 1`), oriented so that `⟨t, prev⟩ > 0`,
+    /// into `out`. No allocation.
+    pub fn tangent(&mut self, x: &[f64], prev: &[f64], out: &mut [f64]) -> Result<(), String> {
+        self.assemble(x)?;
+        self.rhs.iter_mut().for_each(|c| *c = 0.0);
+        self.solve(prev, 1.0)?;
+        out.copy_from_slice(&self.delta);
+        self.normalize(out);
+        if self.dot(out, prev) < 0.0 {
+            out.iter_mut().for_each(|c| *c = -*c);
+        }
+        Ok(())
+    }
+
+    /// Newton on the mapping equations, the condition and
+    /// `⟨border, X − anchor⟩ = 0`, from `x` (modified in place). Converged
+    /// when the Newton step is below `tol` in every unknown in its natural
+    /// unit (displacements over `L`, phases in radians, parameters over
+    /// their spans). No allocation.
+    pub fn correct(
+        &mut self,
+        x: &mut [f64],
+        border: &[f64],
+        anchor: &[f64],
+        tol: f64,
+        max_iterations: usize,
+    ) -> Correction {
+        let ulps = 8.0 * f64::EPSILON / tol.max(f64::MIN_POSITIVE);
+        let mut last = f64::INFINITY;
+        let n = self.n;
+        for it in 0..max_iterations {
+            if let Err(why) = self.assemble(x) {
+                return Correction::Failed(why);
+            }
+            let rhs = -self.dot_diff(border, x, anchor);
+            if let Err(why) = self.solve(border, rhs) {
+                return Correction::Failed(why);
+            }
+            let mut size = 0.0f64;
+            for i in 0..n {
+                let d = self.delta[i];
+                let v = if i >= 2 * self.m {
+                    d.abs() / self.spans[i + 2 - n]
+                } else if i % 2 == 0 {
+                    d.abs() / self.length
+                } else {
+                    d.abs() / (ulps * x[i].abs()).max(1.0)
+                };
+                size = size.max(v);
+                x[i] += d;
+            }
+            if size.is_nan() {
+                return Correction::Failed("the Newton step is not finite".into());
+            }
+            if size <= tol {
+                return Correction::Converged { iterations: it + 1 };
+            }
+            if it >= 3 && size > last && size > 1e3 * tol {
+                return Correction::Failed(format!(
+                    "the corrector does not converge (Newton step {size:.3e} after {} iterations)",
+                    it + 1
+                ));
+            }
+            last = size;
+        }
+        if last <= 1e3 * tol {
+            return Correction::Converged {
+                iterations: max_iterations,
+            };
+        }
+        Correction::Failed(format!(
+            "no convergence in {max_iterations} iterations (last Newton step {last:.3e})"
+        ))
+    }
+}

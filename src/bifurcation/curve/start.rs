@@ -1,0 +1,438 @@
+//! A curve from its start: the checks, the extended system, the corrected
+//! start and its tangent, both directions traced and joined; and which
+//! condition vanishes at a transition located on a branch.
+
+use crate::bifurcation::bordered::Correction;
+use crate::bifurcation::continuation::transition_kind;
+use crate::bifurcation::TransitionKind;
+use crate::dynamics::simulate::{SimOptions, Simulator};
+use crate::model::{Model, ParamSet};
+use crate::orbit::admissible::{self, ViolationKind};
+use crate::orbit::periodic::{PeriodicSolver, SwitchingPoint};
+use crate::orbit::structure::Structure;
+
+use super::condition::{neighbours, rest_margin, Evaluator};
+use super::extended::Extended;
+use super::trace::{Run, Sample, Tracer};
+use super::{
+    Condition, Curve, CurveEnd, CurveError, CurveOptions, CurvePoint, Plane, Special,
+};
+
+/// A segment shorter than this (in `W t`) at a transition shrinks to nothing there.
+const VANISHING: f64 = 1e-3;
+
+/// The unknowns `(x_0, W t_0, …, λx, λy)` of a curve point.
+pub fn unknowns(point: &CurvePoint) -> Vec<f64> {
+    let mut x = Vec::with_capacity(2 * point.points.len() + 2);
+    for q in &point.points {
+        x.push(q.x);
+        x.push(q.phase);
+    }
+    x.push(point.x);
+    x.push(point.y);
+    x
+}
+
+pub(super) fn to_point(x: &[f64]) -> CurvePoint {
+    let n = x.len();
+    let points = x[..n - 2]
+        .chunks_exact(2)
+        .map(|c| SwitchingPoint { x: c[0], phase: c[1] })
+        .collect();
+    CurvePoint {
+        x: x[n - 2],
+        y: x[n - 1],
+        points,
+    }
+}
+
+fn with<M: Model>(base: &M::Params, plane: &Plane, x: f64, y: f64) -> M::Params {
+    let mut p = *base;
+    p.set(plane.x, x);
+    p.set(plane.y, y);
+    p
+}
+
+fn check_plane<M: Model>(plane: &Plane) -> Result<(), CurveError> {
+    let count = <M::Params as ParamSet>::NAMES.len();
+    if plane.x >= count || plane.y >= count || plane.x == plane.y {
+        return Err(CurveError::Options(format!(
+            "the plane's parameters must be two different indices below {count} (got {} and {})",
+            plane.x, plane.y
+        )));
+    }
+    for r in [plane.x_range, plane.y_range] {
+        if !(r[0].is_finite() && r[1].is_finite() && r[0] < r[1]) {
+            return Err(CurveError::Options(format!(
+                "a range [{}, {}] must be finite with lo < hi",
+                r[0], r[1]
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The no-motion regime's domain of a `RestGrazing` curve through `(x, y)`:
+/// the boundary's neighbour whose margin is the smaller in magnitude.
+fn rest_domain<M: Model>(p: &M::Params, condition: Condition) -> Result<usize, CurveError> {
+    let Condition::RestGrazing { boundary } = condition else {
+        return Ok(0);
+    };
+    if boundary >= M::INFO.boundaries.len() {
+        return Err(CurveError::Options(format!(
+            "boundary {boundary} does not exist"
+        )));
+    }
+    neighbours::<M>(boundary)
+        .map(|j| (j, rest_margin::<M>(p, j, boundary).abs()))
+        .filter(|(_, v)| v.is_finite())
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(j, _)| j)
+        .ok_or_else(|| {
+            CurveError::Condition(format!(
+                "no damped domain next to boundary {boundary} has a steady response"
+            ))
+        })
+}
+
+/// The extended system of the curve of `condition` of `structure` through
+/// `point` (not corrected), its scales taken there.
+pub fn system<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: Option<&Structure>,
+    point: &CurvePoint,
+    condition: Condition,
+) -> Result<Extended<M>, CurveError> {
+    check_plane::<M>(plane)?;
+    match (condition, structure) {
+        (Condition::RestGrazing { .. }, None) => {
+            if !point.points.is_empty() {
+                return Err(CurveError::Options(
+                    "the no-motion regime has no switching points".into(),
+                ));
+            }
+        }
+        (Condition::RestGrazing { .. }, Some(_)) => {
+            return Err(CurveError::Options(
+                "a rest-grazing curve has no structure".into(),
+            ))
+        }
+        (_, None) => {
+            return Err(CurveError::Options(
+                "a margin or eigenvalue curve needs the motion's structure".into(),
+            ))
+        }
+        (_, Some(s)) => {
+            if s.len() != point.points.len() || s.is_empty() {
+                return Err(CurveError::Options(format!(
+                    "{} switching points for a structure of {} mappings",
+                    point.points.len(),
+                    s.len()
+                )));
+            }
+            if let Condition::Margin { segment, .. } = condition {
+                if segment >= s.len() {
+                    return Err(CurveError::Options(format!(
+                        "segment {segment} of a structure of {} mappings",
+                        s.len()
+                    )));
+                }
+            }
+        }
+    }
+    if !(point.x.is_finite()
+        && point.y.is_finite()
+        && point.points.iter().all(|q| q.x.is_finite() && q.phase.is_finite()))
+    {
+        return Err(CurveError::Start("a coordinate is not finite".into()));
+    }
+    let p = with::<M>(base, plane, point.x, point.y);
+    p.check()
+        .map_err(|e| CurveError::Start(format!("invalid parameters: {e}")))?;
+    let domain = rest_domain::<M>(&p, condition)?;
+    let eval = Evaluator::<M>::new(condition, structure, &p, domain).map_err(CurveError::Start)?;
+    let length = PeriodicSolver::<M>::length_scale(&p, &point.points);
+    Ok(Extended::new(*base, *plane, length, eval))
+}
+
+fn check_options(opts: &CurveOptions) -> Result<(), CurveError> {
+    if !(opts.min_step > 0.0
+        && opts.min_step <= opts.initial_step
+        && opts.initial_step <= opts.max_step
+        && opts.max_step.is_finite())
+    {
+        return Err(CurveError::Options(format!(
+            "need 0 < min_step <= initial_step <= max_step (got {}, {}, {})",
+            opts.min_step, opts.initial_step, opts.max_step
+        )));
+    }
+    if !(opts.tolerance > 0.0 && opts.location_tolerance > 0.0 && opts.max_points >= 2) {
+        return Err(CurveError::Options(
+            "the tolerances must be positive and max_points at least 2".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// The curve's kind: the condition's transition; an arrival or departure
+/// on a stick boundary that vanishes with a force criterion is named by the
+/// criterion (as [`admissible::worst_margin`] names it).
+fn kind_of<M: Model>(
+    condition: Condition,
+    p: &M::Params,
+    structure: Option<&Structure>,
+    points: &[SwitchingPoint],
+) -> TransitionKind {
+    match condition {
+        Condition::Eigen(k) => k,
+        Condition::RestGrazing { .. } => TransitionKind::Grazing,
+        Condition::Margin { kind, boundary, .. } => {
+            let named = structure.and_then(|s| {
+                let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
+                admissible::worst_margin(&sim, s, points)
+            });
+            match named {
+                Some(w)
+                    if w.boundary == boundary
+                        && matches!(w.kind, ViolationKind::Pass | ViolationKind::StickOnset)
+                        && matches!(
+                            kind,
+                            ViolationKind::Arrival
+                                | ViolationKind::Interior
+                                | ViolationKind::Departure
+                        ) =>
+                {
+                    transition_kind(w.kind)
+                }
+                _ => transition_kind(kind),
+            }
+        }
+    }
+}
+
+fn end_of(e: Option<(super::CurveEndReason, Sample)>) -> Option<CurveEnd> {
+    e.map(|(reason, at)| CurveEnd {
+        reason,
+        at: to_point(&at.x),
+    })
+}
+
+/// Trace the curve through `start` on which `condition` of the motion of
+/// `structure` vanishes, both ways, in `plane` (every other parameter from
+/// `base`). `start` need only be close: it is corrected first (with its
+/// `y` fixed, or else its `x`).
+pub fn trace<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: Option<&Structure>,
+    start: &CurvePoint,
+    condition: Condition,
+    opts: &CurveOptions,
+) -> Result<Curve, CurveError> {
+    check_options(opts)?;
+    let sys = system::<M>(base, plane, structure, start, condition)?;
+    let n = sys.len();
+    let mut x = unknowns(start);
+    // Phase origin: 0 <= W t_0 < 2π.
+    if n > 2 {
+        let turns = (x[1] / std::f64::consts::TAU).floor();
+        for k in 0..(n - 2) / 2 {
+            x[2 * k + 1] -= turns * std::f64::consts::TAU;
+        }
+    }
+    let mut tracer = Tracer {
+        sys,
+        opts,
+        plane: *plane,
+    };
+    let mut border = vec![0.0; n];
+    let mut corrected = None;
+    let mut why = String::new();
+    for axis in [1, 0] {
+        tracer.sys.axis(axis, &mut border);
+        let mut trial = x.clone();
+        match tracer
+            .sys
+            .correct(&mut trial, &border, &x, opts.tolerance, 40)
+        {
+            Correction::Converged { .. } => {
+                corrected = Some(trial);
+                break;
+            }
+            Correction::Failed(w) => why = w,
+        }
+    }
+    let x = corrected.ok_or(CurveError::Start(why))?;
+    {
+        let p = tracer.sys.params(&x);
+        let pts = to_point(&x).points;
+        tracer.sys.eval.exclude_companions(&p, &pts);
+    }
+    let mut t = vec![0.0; n];
+    let mut tangent = Err(String::new());
+    for axis in [0, 1] {
+        tracer.sys.axis(axis, &mut border);
+        tangent = tracer.sys.tangent(&x, &border, &mut t);
+        if tangent.is_ok() {
+            break;
+        }
+    }
+    tangent.map_err(CurveError::Start)?;
+    let first = tracer
+        .examine(x.clone(), t.clone())
+        .map_err(CurveError::Start)?;
+    if first.other.is_nan() || first.other <= 0.0 {
+        return Err(CurveError::Start(format!(
+            "another condition fails at the start ({:?}, margin {:e})",
+            first.worst, first.other
+        )));
+    }
+    let p = tracer.sys.params(&x);
+    let start_point = to_point(&x);
+    let kind = kind_of::<M>(condition, &p, structure, &start_point.points);
+    let boundary = match condition {
+        Condition::Margin { boundary, .. } => boundary,
+        Condition::RestGrazing { boundary } => Some(boundary),
+        Condition::Eigen(_) => None,
+    };
+    let forward = tracer.run(first.clone(), true);
+    let make = |points: Vec<Sample>, ends: Vec<CurveEnd>, special: Vec<Special>| Curve {
+        kind,
+        condition,
+        boundary,
+        structure: structure.cloned(),
+        points: points.iter().map(|s| to_point(&s.x)).collect(),
+        ends,
+        special,
+    };
+    let specials = |run: &Run, shift: usize, reverse: Option<usize>| -> Vec<Special> {
+        run.special
+            .iter()
+            .map(|f| Special {
+                index: match reverse {
+                    Some(nb) => nb - f.index - 1,
+                    None => f.index + shift,
+                },
+                kind: f.kind,
+                at: to_point(&f.at.x),
+            })
+            .collect()
+    };
+    if forward.end.is_none() {
+        let special = specials(&forward, 0, None);
+        return Ok(make(forward.points, Vec::new(), special));
+    }
+    let mut back_start = first;
+    back_start.t.iter_mut().for_each(|c| *c = -*c);
+    let backward = tracer.run(back_start, false);
+    let nb = backward.points.len() - 1;
+    let mut special = specials(&backward, 0, Some(nb));
+    special.reverse();
+    special.extend(specials(&forward, nb, None));
+    let mut points: Vec<Sample> = backward.points.into_iter().skip(1).rev().collect();
+    points.extend(forward.points);
+    let ends = [end_of(backward.end), end_of(forward.end)]
+        .into_iter()
+        .flatten()
+        .collect();
+    Ok(make(points, ends, special))
+}
+
+/// The condition's value at `point` (the motion's switching points given,
+/// not corrected): zero on the curve. For tests and checks.
+pub fn condition_value<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: Option<&Structure>,
+    point: &CurvePoint,
+    condition: Condition,
+) -> Result<f64, CurveError> {
+    let mut sys = system::<M>(base, plane, structure, point, condition)?;
+    let v = sys.condition(&unknowns(point));
+    if v.is_nan() {
+        return Err(CurveError::Condition(format!(
+            "{condition:?} at ({}, {})",
+            point.x, point.y
+        )));
+    }
+    Ok(v)
+}
+
+/// Which condition vanishes at a transition of kind `kind` located on a
+/// branch of `structure` at parameters `p` with switching points `points`.
+///
+/// For a non-smooth kind: the admissibility condition with the smallest
+/// margin there among those that name `kind` (as
+/// [`crate::bifurcation::transition_kind`] names them; any kind if none
+/// does), leaving out an interior margin to a boundary the segment both
+/// starts and ends on (an excursion shrinking to nothing: its margin
+/// vanishes quadratically, its arrival's linearly, and the arrival is
+/// taken); `None` if the smallest of all is a stick's end (`StickEnd`,
+/// whose margin is a phase difference with a jump, no smooth function) or
+/// nothing is evaluable, or if a segment's duration is below `1e-3` rad
+/// there (a segment shrinking to nothing: the structure's equations
+/// degenerate on the curve, which the motion on the other side of the
+/// transition carries). For an
+/// eigenvalue kind: `Eigen(kind)`; a branch point keeps its kind and is
+/// traced on `det(I − DP)` like a fold.
+pub fn condition_at_transition<M: Model>(
+    p: &M::Params,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    kind: TransitionKind,
+) -> Option<Condition> {
+    if kind.is_eigenvalue() {
+        return Some(Condition::Eigen(kind));
+    }
+    if points.len() != structure.len() {
+        return None;
+    }
+    let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
+    let all = admissible::conditions(&sim, structure, points);
+    let info = M::INFO;
+    // An interior margin to a boundary that the segment starts and ends
+    // on measures an excursion that shrinks to nothing: it vanishes
+    // quadratically (no simple zero), with the arrival's that vanishes
+    // linearly.
+    let degenerate = |c: &admissible::Violation| {
+        c.kind == ViolationKind::Interior && {
+            let mi = info.mappings[structure.steps()[c.segment]];
+            c.boundary == Some(mi.from) && c.boundary == Some(mi.to)
+        }
+    };
+    let usable = |c: &&admissible::Violation| {
+        c.margin.is_finite()
+            && !matches!(c.kind, ViolationKind::Other | ViolationKind::StickEnd)
+            && !degenerate(c)
+    };
+    let pick = |named: bool| {
+        all.iter()
+            .filter(usable)
+            .filter(|c| !named || transition_kind(c.kind) == kind)
+            .min_by(|a, b| a.margin.total_cmp(&b.margin))
+    };
+    let smallest = all
+        .iter()
+        .filter(|c| c.margin.is_finite())
+        .min_by(|a, b| a.margin.total_cmp(&b.margin))?;
+    if smallest.kind == ViolationKind::StickEnd {
+        return None;
+    }
+    // A segment shrinking to nothing: its mapping equation degenerates
+    // (its arrival and departure turn tangential with it), so no condition
+    // of this structure has a regular curve there; the motion on the other
+    // side of the transition carries it.
+    if all
+        .iter()
+        .any(|c| c.kind == ViolationKind::Duration && c.margin.abs() <= VANISHING)
+    {
+        return None;
+    }
+    let chosen = pick(true).or_else(|| pick(false))?;
+    Some(Condition::Margin {
+        kind: chosen.kind,
+        segment: chosen.segment,
+        boundary: chosen.boundary,
+    })
+}

@@ -1,0 +1,513 @@
+//! Stepping along a curve: predictor along the tangent, corrector on the
+//! extended system, adaptive step, and the ends (box edge, back to the
+//! start, a codimension-two point, the corrector's failure, the point
+//! limit) and the special points met on the way.
+//!
+//! A step is rejected (and halved) when the corrector fails, moves the
+//! point by more than half the step, turns the tangent by more than about
+//! 37°, or moves an eigenvalue of `DP` by more than 0.25 (as
+//! [`crate::bifurcation::continuation`]); it grows by 1.5 after an easy
+//! correction. Codimension-two points and special points are located by
+//! regula falsi (Illinois) in arclength, each trial a corrected point, until
+//! the bracket is below `location_tolerance` in both parameters.
+
+use crate::bifurcation::bordered::Correction;
+use crate::bifurcation::continuation::transition_kind;
+use crate::bifurcation::detect;
+use crate::bifurcation::TransitionKind;
+use crate::model::{Model, ParamSet};
+use crate::orbit::admissible::ViolationKind;
+use crate::orbit::stability::Stability;
+
+use super::condition::trace_det;
+use super::extended::Extended;
+use super::{Condition, CurveEndReason, CurveOptions, Plane};
+
+/// An accepted point and what is watched there.
+#[derive(Clone, Debug)]
+pub(super) struct Sample {
+    pub x: Vec<f64>,
+    pub t: Vec<f64>,
+    /// The smallest margin of the conditions that must keep holding.
+    pub other: f64,
+    pub worst: Option<(ViolationKind, Option<usize>)>,
+    /// `det(I − DP)`, `det(I + DP)` (NaN without `DP`).
+    pub plus: f64,
+    pub minus: f64,
+    /// `tr² − 4 det` (negative: a complex pair).
+    pub disc: f64,
+    pub stability: Option<Stability>,
+}
+
+/// A special point found on a step: its sample and kind, in the run's
+/// numbering (between `points[index]` and `points[index + 1]`).
+#[derive(Clone, Debug)]
+pub(super) struct Found {
+    pub index: usize,
+    pub kind: TransitionKind,
+    pub at: Sample,
+}
+
+/// What one direction produced.
+pub(super) struct Run {
+    pub points: Vec<Sample>,
+    pub special: Vec<Found>,
+    pub end: Option<(CurveEndReason, Sample)>,
+}
+
+/// The stepping machinery of one curve.
+pub(super) struct Tracer<'a, M: Model> {
+    pub sys: Extended<M>,
+    pub opts: &'a CurveOptions,
+    pub plane: Plane,
+}
+
+const NEWTON_ITERATIONS: usize = 12;
+
+impl<M: Model> Tracer<'_, M> {
+    /// Everything watched at a corrected point `x` with tangent `t`.
+    pub fn examine(&mut self, x: Vec<f64>, t: Vec<f64>) -> Result<Sample, String> {
+        let p = self.sys.params(&x);
+        p.check().map_err(|e| format!("invalid parameters: {e}"))?;
+        let m = (x.len() - 2) / 2;
+        let mut pts = vec![crate::orbit::periodic::SwitchingPoint { phase: 0.0, x: 0.0 }; m];
+        Extended::<M>::points_into(&x, &mut pts);
+        let dp = if m > 0 {
+            trace_det::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
+        } else {
+            None
+        };
+        let (other, worst) = self.sys.eval.other(&p, &pts);
+        let (plus, minus, disc) = dp.map_or((f64::NAN, f64::NAN, f64::NAN), |d| {
+            let (tr, det) = (d.trace(), d.determinant());
+            (1.0 - tr + det, 1.0 + tr + det, tr * tr - 4.0 * det)
+        });
+        Ok(Sample {
+            x,
+            t,
+            other,
+            worst,
+            plus,
+            minus,
+            disc,
+            stability: dp.map(|d| Stability::of(&d)),
+        })
+    }
+
+    /// The corrected point at arclength `s` from `from` along its tangent.
+    pub fn corrected(
+        &mut self,
+        from: &Sample,
+        s: f64,
+        max_iterations: usize,
+    ) -> Result<(Vec<f64>, usize), String> {
+        let mut x: Vec<f64> = from.x.iter().zip(&from.t).map(|(a, d)| a + s * d).collect();
+        let anchor = x.clone();
+        match self.sys.correct(
+            &mut x,
+            &from.t,
+            &anchor,
+            self.opts.tolerance,
+            max_iterations,
+        ) {
+            Correction::Converged { iterations } => Ok((x, iterations)),
+            Correction::Failed(why) => Err(why),
+        }
+    }
+
+    /// Regula falsi (Illinois) in arclength on `g` over `[0, s_bad]` from
+    /// `from` (`g > 0` there, `g(s_bad) <= 0` or undefined); returns the
+    /// last good and bad samples.
+    fn locate(
+        &mut self,
+        from: &Sample,
+        s_bad: f64,
+        g_bad: f64,
+        g: impl Fn(&Sample) -> f64,
+    ) -> (Sample, Option<Sample>) {
+        let spans = self.sys.spans();
+        let s_tol = self.opts.location_tolerance / spans[0].max(spans[1]);
+        let (mut lo, mut glo) = (0.0, g(from));
+        let (mut hi, mut ghi) = (s_bad, g_bad);
+        let mut good: Option<Sample> = None;
+        let mut bad: Option<Sample> = None;
+        let mut side = 0i8;
+        for _ in 0..200 {
+            if (hi - lo).abs() <= s_tol {
+                break;
+            }
+            let mut s = if glo.is_finite() && ghi.is_finite() && glo != ghi {
+                let (wl, wh) = match side {
+                    1 => (0.5, 1.0),
+                    -1 => (1.0, 0.5),
+                    _ => (1.0, 1.0),
+                };
+                lo + (hi - lo) * (wl * glo) / (wl * glo - wh * ghi)
+            } else {
+                0.5 * (lo + hi)
+            };
+            let span = hi - lo;
+            if !(s > lo + 1e-3 * span && s < hi - 1e-3 * span) || side.abs() == 2 {
+                s = 0.5 * (lo + hi);
+                side = 0;
+            }
+            let sample = self
+                .corrected(from, s, 4 * NEWTON_ITERATIONS)
+                .and_then(|(x, _)| self.examine(x, from.t.clone()))
+                .ok();
+            match sample {
+                Some(smp) => {
+                    let v = g(&smp);
+                    if v > 0.0 {
+                        lo = s;
+                        glo = v;
+                        good = Some(smp);
+                        side = if side == 1 { 2 } else { 1 };
+                    } else {
+                        hi = s;
+                        ghi = if v.is_nan() { f64::NAN } else { v };
+                        bad = Some(smp);
+                        side = if side == -1 { -2 } else { -1 };
+                    }
+                    if v == 0.0 {
+                        break;
+                    }
+                }
+                None => {
+                    hi = s;
+                    ghi = f64::NAN;
+                    side = 0;
+                }
+            }
+        }
+        (good.unwrap_or_else(|| from.clone()), bad)
+    }
+
+    /// The corrected point where the step from `a` to `b` leaves the box
+    /// (that parameter fixed on the edge), if it does.
+    fn on_edge(&mut self, a: &Sample, b: &[f64]) -> Option<Result<Sample, String>> {
+        let n = a.x.len();
+        let ranges = [self.plane.x_range, self.plane.y_range];
+        // The edge crossed first along the chord.
+        let mut first: Option<(f64, usize, f64)> = None;
+        for (axis, r) in ranges.iter().enumerate() {
+            let (va, vb) = (a.x[n - 2 + axis], b[n - 2 + axis]);
+            for edge in *r {
+                let out = if edge == r[0] { vb < edge } else { vb > edge };
+                if out && vb != va {
+                    let theta = ((edge - va) / (vb - va)).clamp(0.0, 1.0);
+                    if first.is_none_or(|f| theta < f.0) {
+                        first = Some((theta, axis, edge));
+                    }
+                }
+            }
+        }
+        let (theta, axis, edge) = first?;
+        let mut x: Vec<f64> = a.x.iter().zip(b).map(|(p, q)| p + theta * (q - p)).collect();
+        x[n - 2 + axis] = edge;
+        let anchor = x.clone();
+        let mut border = vec![0.0; n];
+        self.sys.axis(axis, &mut border);
+        Some(
+            match self.sys.correct(
+                &mut x,
+                &border,
+                &anchor,
+                self.opts.tolerance,
+                4 * NEWTON_ITERATIONS,
+            ) {
+                Correction::Converged { .. } => {
+                    x[n - 2 + axis] = edge;
+                    let mut t = a.t.clone();
+                    self.sys
+                        .tangent(&x, &a.t, &mut t)
+                        .and_then(|()| self.examine(x, t))
+                }
+                Correction::Failed(why) => Err(why),
+            },
+        )
+    }
+
+    /// Whether the step from `a` to `b` passes `start` again (phases
+    /// compared modulo 2π: the same motion relabelled).
+    fn passes_start(&self, start: &Sample, a: &Sample, b: &Sample) -> bool {
+        let n = start.x.len();
+        let mut x0 = start.x.clone();
+        if n > 2 {
+            let turns = ((b.x[1] - start.x[1]) / std::f64::consts::TAU).round();
+            for k in 0..(n - 2) / 2 {
+                x0[2 * k + 1] += turns * std::f64::consts::TAU;
+            }
+        }
+        let step = self.sys.distance(&a.x, &b.x);
+        if step == 0.0 {
+            return false;
+        }
+        let seg: Vec<f64> = b.x.iter().zip(&a.x).map(|(p, q)| p - q).collect();
+        let theta = (self.sys.dot_diff(&seg, &x0, &a.x) / (step * step)).clamp(0.0, 1.0);
+        let near: Vec<f64> = a.x.iter().zip(&seg).map(|(p, d)| p + theta * d).collect();
+        self.sys.distance(&near, &x0) <= 0.25 * step
+    }
+
+    /// The special points (a fold or period-doubling curve met) between
+    /// `a` and `b` (`b` at arclength `s_b`), located, in arclength order.
+    fn specials(&mut self, a: &Sample, b: &Sample, s_b: f64) -> Vec<(Sample, TransitionKind)> {
+        let mut out = Vec::new();
+        let condition = self.sys.eval.condition;
+        if !matches!(condition, Condition::Margin { .. }) {
+            return out;
+        }
+        type Psi = fn(&Sample) -> f64;
+        let tests: [(TransitionKind, Psi); 2] = [
+            (TransitionKind::Fold, |s| s.plus),
+            (TransitionKind::PeriodDoubling, |s| s.minus),
+        ];
+        for (kind, psi) in tests {
+            let (va, vb) = (psi(a), psi(b));
+            if !(va.is_finite() && vb.is_finite()) || va == 0.0 || (va > 0.0) == (vb > 0.0) {
+                continue;
+            }
+            let sign = va.signum();
+            let (good, bad) = self.locate(a, s_b, sign * vb, |s| sign * psi(s));
+            let at = match bad {
+                Some(bd) if psi(&bd).abs() < psi(&good).abs() => bd,
+                _ => good,
+            };
+            // A sign change through a pole (a singular arrival) is none.
+            if at
+                .stability
+                .as_ref()
+                .is_some_and(|st| detect::is_critical(kind, st))
+            {
+                out.push((at, kind));
+            }
+        }
+        out.sort_by(|x, y| {
+            let sx = self.sys.dot_diff(&a.t, &x.0.x, &a.x);
+            let sy = self.sys.dot_diff(&a.t, &y.0.x, &a.x);
+            sx.total_cmp(&sy)
+        });
+        out
+    }
+
+    /// A codimension-two end between `prev` and `cand` (at arclength
+    /// `s_c`), located, with its kind and boundary.
+    fn codim2(&mut self, prev: &Sample, cand: &Sample, s_c: f64) -> Option<(Sample, CurveEndReason)> {
+        let ns = matches!(
+            self.sys.eval.condition,
+            Condition::Eigen(TransitionKind::NeimarkSacker)
+        );
+        // The pair of a Neimark–Sacker curve turns real: a 1:1 or 1:2 resonance.
+        let turns_real = ns && prev.disc < 0.0 && !(cand.disc < 0.0);
+        let lost = cand.other.is_nan() || cand.other <= 0.0;
+        if lost {
+            let (good, bad) = self.locate(prev, s_c, cand.other, |s| s.other);
+            let (kind, boundary) = good
+                .worst
+                .or(bad.as_ref().and_then(|b| b.worst))
+                .or(cand.worst)
+                .map_or((TransitionKind::Grazing, None), |(k, b)| {
+                    (transition_kind(k), b)
+                });
+            let reason = CurveEndReason::Codim2 { kind, boundary };
+            if !(turns_real && good.disc >= 0.0) {
+                return Some((good, reason));
+            }
+        }
+        if turns_real {
+            let (good, _) = self.locate(prev, s_c, -cand.disc, |s| -s.disc);
+            let n = good.x.len();
+            let p = self.sys.params(&good.x);
+            let m = (n - 2) / 2;
+            let mut pts = vec![crate::orbit::periodic::SwitchingPoint { phase: 0.0, x: 0.0 }; m];
+            Extended::<M>::points_into(&good.x, &mut pts);
+            let tr = trace_det::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
+                .map_or(0.0, |d| d.trace());
+            let kind = if tr >= 0.0 {
+                TransitionKind::Fold
+            } else {
+                TransitionKind::PeriodDoubling
+            };
+            return Some((
+                good,
+                CurveEndReason::Codim2 {
+                    kind,
+                    boundary: None,
+                },
+            ));
+        }
+        None
+    }
+
+    fn out_of_box(&self, x: &[f64]) -> bool {
+        let n = x.len();
+        let (a, b) = (x[n - 2], x[n - 1]);
+        a < self.plane.x_range[0]
+            || a > self.plane.x_range[1]
+            || b < self.plane.y_range[0]
+            || b > self.plane.y_range[1]
+    }
+
+    fn on_box_edge_leaving(&self, s: &Sample) -> bool {
+        let n = s.x.len();
+        let tol = self.opts.location_tolerance;
+        let ranges = [self.plane.x_range, self.plane.y_range];
+        (0..2).any(|axis| {
+            let (v, d) = (s.x[n - 2 + axis], s.t[n - 2 + axis]);
+            ((v - ranges[axis][0]).abs() <= tol && d < 0.0)
+                || ((v - ranges[axis][1]).abs() <= tol && d > 0.0)
+        })
+    }
+
+    /// Follow from `start` along its tangent until an end (`None`: closed).
+    pub fn run(&mut self, start: Sample, loop_check: bool) -> Run {
+        let opts = *self.opts;
+        let mut points = vec![start.clone()];
+        let mut special = Vec::new();
+        let mut prev = start.clone();
+        let mut ds = opts.initial_step;
+        let mut travelled = 0.0;
+        if self.on_box_edge_leaving(&prev) {
+            return Run {
+                points,
+                special,
+                end: Some((CurveEndReason::BoxEdge, prev)),
+            };
+        }
+        loop {
+            if points.len() >= opts.max_points {
+                return Run {
+                    points,
+                    special,
+                    end: Some((CurveEndReason::MaxPoints, prev)),
+                };
+            }
+            let accepted = self
+                .corrected(&prev, ds, NEWTON_ITERATIONS)
+                .and_then(|(x, it)| {
+                    let pred: Vec<f64> =
+                        prev.x.iter().zip(&prev.t).map(|(a, d)| a + ds * d).collect();
+                    let moved = self.sys.distance(&x, &pred);
+                    if moved > 0.5 * ds {
+                        return Err(format!(
+                            "the corrector moves the point by {moved:.3e}, more than half the step {ds:.3e}"
+                        ));
+                    }
+                    let mut t = prev.t.clone();
+                    self.sys.tangent(&x, &prev.t, &mut t)?;
+                    let turn = self.sys.dot(&t, &prev.t);
+                    if turn < 0.8 {
+                        return Err(format!(
+                            "the tangent turns by {:.1}° over the step",
+                            turn.clamp(-1.0, 1.0).acos().to_degrees()
+                        ));
+                    }
+                    let smp = self.examine(x, t)?;
+                    if let (Some(a), Some(b)) = (&prev.stability, &smp.stability) {
+                        let jump = detect::eigenvalue_jump(a, b);
+                        if jump > 0.25 && ds > 16.0 * opts.min_step {
+                            return Err(format!(
+                                "an eigenvalue of DP jumps by {jump:.3e} over the step"
+                            ));
+                        }
+                    }
+                    Ok((smp, it))
+                });
+            if std::env::var_os("CURVE_DEBUG").is_some() {
+                match &accepted {
+                    Ok((c, it)) => eprintln!("ds {ds:.3e} it {it} other {:.3e} at {:?}", c.other, &c.x[c.x.len() - 2..]),
+                    Err(e) => eprintln!("ds {ds:.3e} rejected: {e}"),
+                }
+            }
+            let (mut cand, iterations) = match accepted {
+                Ok(c) => c,
+                Err(_) if ds > opts.min_step => {
+                    ds = (0.5 * ds).max(opts.min_step);
+                    continue;
+                }
+                Err(why) => {
+                    return Run {
+                        points,
+                        special,
+                        end: Some((CurveEndReason::NewtonFailure(why), prev)),
+                    };
+                }
+            };
+            let mut s_c = self.sys.dot_diff(&prev.t, &cand.x, &prev.x);
+            let mut reason = None;
+            if self.out_of_box(&cand.x) {
+                match self.on_edge(&prev, &cand.x) {
+                    Some(Ok(b)) if !self.out_of_box(&b.x) => {
+                        s_c = self.sys.dot_diff(&prev.t, &b.x, &prev.x);
+                        cand = b;
+                        reason = Some(CurveEndReason::BoxEdge);
+                    }
+                    _ if ds > opts.min_step => {
+                        ds = (0.5 * ds).max(opts.min_step);
+                        continue;
+                    }
+                    other => {
+                        let why = match other {
+                            Some(Err(e)) => e,
+                            _ => "the edge point lies outside the box".into(),
+                        };
+                        return Run {
+                            points,
+                            special,
+                            end: Some((
+                                CurveEndReason::NewtonFailure(format!(
+                                    "the corrector fails on the box's edge: {why}"
+                                )),
+                                prev,
+                            )),
+                        };
+                    }
+                }
+            }
+            if let Some((at, why)) = self.codim2(&prev, &cand, s_c) {
+                s_c = self.sys.dot_diff(&prev.t, &at.x, &prev.x);
+                cand = at;
+                reason = Some(why);
+            }
+            if s_c > 0.0 {
+                for (at, kind) in self.specials(&prev, &cand, s_c) {
+                    special.push(Found {
+                        index: points.len() - 1,
+                        kind,
+                        at,
+                    });
+                }
+            }
+            if s_c > 0.0 || reason.is_none() {
+                points.push(cand.clone());
+            }
+            travelled += s_c.abs();
+            if let Some(reason) = reason {
+                return Run {
+                    points,
+                    special,
+                    end: Some((reason, cand)),
+                };
+            }
+            if loop_check
+                && points.len() > 3
+                && travelled > 4.0 * opts.initial_step
+                && self.passes_start(&start, &prev, &cand)
+            {
+                // Closed: the last point is the start again.
+                points.pop();
+                return Run {
+                    points,
+                    special,
+                    end: None,
+                };
+            }
+            if iterations <= 3 {
+                ds = (1.5 * ds).min(opts.max_step);
+            } else if iterations >= 6 {
+                ds = (0.7 * ds).max(opts.min_step);
+            }
+            prev = cand;
+        }
+    }
+}
