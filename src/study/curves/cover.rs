@@ -55,6 +55,11 @@ fn line_value(line: Line) -> f64 {
     }
 }
 
+/// Whether the start's motion has at most `max` mappings (is traced).
+fn traceable(start: &Start, max: usize) -> bool {
+    start.structure.as_ref().is_none_or(|s| s.len() <= max)
+}
+
 fn same_line(a: Line, b: Line) -> bool {
     match (a, b) {
         (Line::X(u), Line::X(v)) | (Line::Y(u), Line::Y(v)) => u == v,
@@ -87,7 +92,8 @@ impl<'a, M: Model> Cover<'a, M> {
             self.settings.count,
             self.settings.sweep,
         )?;
-        for start in &sw.starts {
+        let max = self.settings.max_mappings;
+        for start in sw.starts.iter().filter(|s| traceable(s, max)) {
             if self.on_curve(start) {
                 continue;
             }
@@ -177,7 +183,7 @@ impl<'a, M: Model> Cover<'a, M> {
                 if budget == 0 {
                     break;
                 }
-                if self.on_curve(&start) {
+                if !traceable(&start, self.settings.max_mappings) || self.on_curve(&start) {
                     continue;
                 }
                 let [xl, xh] = self.plane.x_range;
@@ -246,7 +252,10 @@ impl<'a, M: Model> Cover<'a, M> {
                 if b - a < 2.0 * FINEST * span {
                     continue;
                 }
-                let (ma, mb) = (motions(sa), motions(sb));
+                let (ma, mb) = (
+                    motions(sa, self.settings.max_mappings),
+                    motions(sb, self.settings.max_mappings),
+                );
                 let differ = ma
                     .iter()
                     .filter(|m| !mb.contains(m))
@@ -361,13 +370,15 @@ impl<'a, M: Model> Cover<'a, M> {
     }
 }
 
-/// The motions seen anywhere along a line (by name, without `^N`).
-fn motions(s: &LineSweep) -> Vec<&str> {
+/// The motions seen anywhere along a line (by name, without `^N`), of at
+/// most `max_mappings` mappings.
+fn motions(s: &LineSweep, max_mappings: usize) -> Vec<&str> {
     let mut out: Vec<&str> = s
         .labels
         .iter()
         .flat_map(|l| l.split(';'))
         .filter(|m| !m.is_empty() && *m != "stick")
+        .filter(|m| m.split_whitespace().count() <= max_mappings)
         .collect();
     out.sort_unstable();
     out.dedup();

@@ -176,6 +176,10 @@ pub struct CurvesSettings {
     /// At most this many lines added between neighbouring lines whose
     /// motions differ in a way no curve between them explains.
     pub max_refine: usize,
+    /// Transitions of motions of more mappings than this are not traced
+    /// (the long cycles of period-adding cascades: thin bands whose curves
+    /// cost a continuation of that many switching points each).
+    pub max_mappings: usize,
     /// The sweeps' settings.
     pub sweep: SweepOptions,
     /// The curves' continuation.
@@ -189,8 +193,12 @@ impl Default for CurvesSettings {
             spread: 3,
             max_missing: 6,
             max_refine: 4,
+            max_mappings: 12,
             sweep: SweepOptions::default(),
-            curve: CurveOptions::default(),
+            curve: CurveOptions {
+                max_points: 2000,
+                ..CurveOptions::default()
+            },
         }
     }
 }
