@@ -18,10 +18,12 @@ mod common;
 
 use common::counting::{allocations, Counting};
 use stickslip::bifurcation::curve::{
-    condition_at_transition, condition_scale, crossings, system, trace, unknowns, Condition,
-    Curve, CurveOptions, CurvePoint, Line, Plane,
+    condition_at_transition, condition_scale, crossings, system, trace, unknowns, Condition, Curve,
+    CurveOptions, CurvePoint, Line, Plane,
 };
-use stickslip::bifurcation::{follow, Branch, ContinuationOptions, EndReason, Start, TransitionKind};
+use stickslip::bifurcation::{
+    follow, Branch, ContinuationOptions, EndReason, Start, TransitionKind,
+};
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::orbit::admissible::conditions;
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
@@ -101,7 +103,10 @@ fn curves_of<M: Model>(base: &M::Params, plane: &Plane, branch: &Branch, q: f64)
         let p = with(base, plane, at.value, q);
         let Some(cond) = condition_at_transition::<M>(&p, &branch.structure, &at.points, kind)
         else {
-            eprintln!("no condition for {kind:?} at W = {} (a vanishing segment)", at.value);
+            eprintln!(
+                "no condition for {kind:?} at W = {} (a vanishing segment)",
+                at.value
+            );
             continue;
         };
         let start = CurvePoint {
@@ -135,7 +140,10 @@ fn worst_on_curve<M: Model>(base: &M::Params, plane: &Plane, c: &Curve) -> f64 {
         if !t.converged() {
             pts = q.points.clone();
             let r = solver.residual(&p, &pts);
-            assert!(r <= 1e-10 * l * w.max(1.0), "residual {r:e} at {q:?}: {t:?}");
+            assert!(
+                r <= 1e-10 * l * w.max(1.0),
+                "residual {r:e} at {q:?}: {t:?}"
+            );
         }
         let scale = condition_scale::<M>(&p, c.condition, structure, &pts);
         let g = match c.condition {
@@ -187,7 +195,9 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
     let plane = paper_plane();
     let mut curves: Vec<Curve> = Vec::new();
     let mut seen: Vec<Structure> = Vec::new();
-    for w in [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 3.9, 4.5, 5.0, 5.5, 6.5, 7.5] {
+    for w in [
+        0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 3.9, 4.5, 5.0, 5.5, 6.5, 7.5,
+    ] {
         let Some(b) = branch_at::<Paper>(&base, &plane, w, 70.0) else {
             continue;
         };
@@ -262,7 +272,11 @@ fn paper_curves_satisfy_their_conditions_and_match_sweeps_at_other_q0() {
                 .fold(f64::INFINITY, f64::min);
             eprintln!("Q0 = {q}: {kind:?} at W = {} (branch: {near:e})", x.x);
             if near.is_finite() {
-                assert!(near <= 1e-8, "{kind:?} at Q0 = {q}: W = {} is {near:e} from the branch's", x.x);
+                assert!(
+                    near <= 1e-8,
+                    "{kind:?} at Q0 = {q}: W = {} is {near:e} from the branch's",
+                    x.x
+                );
                 matched += 1;
             }
         }
@@ -518,6 +532,9 @@ fn the_rest_grazing_curve_is_the_closed_form() {
     for q in &c.points {
         let p = with(&base, &plane, q.x, q.y);
         let g = Paper::boundary_velocity(&p, k) - rest_max_v::<Paper>(&p, j);
-        assert!(g.abs() <= 1e-10 * Paper::boundary_velocity(&p, k).abs(), "{g:e} at {q:?}");
+        assert!(
+            g.abs() <= 1e-10 * Paper::boundary_velocity(&p, k).abs(),
+            "{g:e} at {q:?}"
+        );
     }
 }
