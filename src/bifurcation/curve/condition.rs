@@ -189,9 +189,7 @@ impl<M: Model> Evaluator<M> {
                 admissible::margin_of(&self.sim, structure, points, (kind, segment, boundary))
                     .unwrap_or(f64::NAN)
             }
-            Condition::RestGrazing { boundary } => {
-                rest_margin::<M>(p, self.rest_domain, boundary)
-            }
+            Condition::RestGrazing { boundary } => rest_margin::<M>(p, self.rest_domain, boundary),
         }
     }
 

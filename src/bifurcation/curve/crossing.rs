@@ -40,7 +40,11 @@ pub fn crossings<M: Model>(
     sys.axis(axis, &mut border);
     let np = curve.points.len();
     // A closed curve's last point joins its first.
-    let pairs = if curve.ends.is_empty() && np > 2 { np } else { np - 1 };
+    let pairs = if curve.ends.is_empty() && np > 2 {
+        np
+    } else {
+        np - 1
+    };
     for i in 0..pairs {
         let (a, b) = (&curve.points[i], &curve.points[(i + 1) % np]);
         let (da, db) = (coord(a) - value, coord(b) - value);
@@ -60,7 +64,11 @@ pub fn crossings<M: Model>(
                 xb[2 * k + 1] += turns * std::f64::consts::TAU;
             }
         }
-        let mut x: Vec<f64> = xa.iter().zip(&xb).map(|(p, q)| p + theta * (q - p)).collect();
+        let mut x: Vec<f64> = xa
+            .iter()
+            .zip(&xb)
+            .map(|(p, q)| p + theta * (q - p))
+            .collect();
         x[n - 2 + axis] = value;
         let anchor = x.clone();
         if let Correction::Converged { .. } =

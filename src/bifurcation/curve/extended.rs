@@ -224,7 +224,11 @@ impl<M: Model> Extended<M> {
         let hl = [self.fd_step(x, n - 2), self.fd_step(x, n - 1)];
         let mut pl = [[p; 2]; 2];
         for (axis, h) in hl.iter().enumerate() {
-            let idx = if axis == 0 { self.plane.x } else { self.plane.y };
+            let idx = if axis == 0 {
+                self.plane.x
+            } else {
+                self.plane.y
+            };
             pl[axis][0].set(idx, x[n - 2 + axis] + h);
             pl[axis][1].set(idx, x[n - 2 + axis] - h);
         }
@@ -304,7 +308,10 @@ impl<M: Model> Extended<M> {
             return Err(if row == 2 * m {
                 format!("the condition's derivative in unknown {col} is not finite (the condition is not defined on both sides)")
             } else {
-                format!("mapping {}'s derivative in unknown {col} is not finite", row / 2)
+                format!(
+                    "mapping {}'s derivative in unknown {col} is not finite",
+                    row / 2
+                )
             });
         }
         Ok(r)

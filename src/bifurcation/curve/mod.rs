@@ -190,4 +190,3 @@ pub enum CurveError {
     #[error("the condition cannot be evaluated: {0}")]
     Condition(String),
 }
-

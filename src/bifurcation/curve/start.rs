@@ -14,9 +14,7 @@ use crate::orbit::structure::Structure;
 use super::condition::{neighbours, rest_margin, Evaluator};
 use super::extended::Extended;
 use super::trace::{Run, Sample, Tracer};
-use super::{
-    Condition, Curve, CurveEnd, CurveError, CurveOptions, CurvePoint, Plane, Special,
-};
+use super::{Condition, Curve, CurveEnd, CurveError, CurveOptions, CurvePoint, Plane, Special};
 
 /// A segment shorter than this (in `W t`) at a transition shrinks to nothing there.
 const VANISHING: f64 = 1e-3;
@@ -37,7 +35,10 @@ pub(super) fn to_point(x: &[f64]) -> CurvePoint {
     let n = x.len();
     let points = x[..n - 2]
         .chunks_exact(2)
-        .map(|c| SwitchingPoint { x: c[0], phase: c[1] })
+        .map(|c| SwitchingPoint {
+            x: c[0],
+            phase: c[1],
+        })
         .collect();
     CurvePoint {
         x: x[n - 2],
@@ -143,7 +144,10 @@ pub fn system<M: Model>(
     }
     if !(point.x.is_finite()
         && point.y.is_finite()
-        && point.points.iter().all(|q| q.x.is_finite() && q.phase.is_finite()))
+        && point
+            .points
+            .iter()
+            .all(|q| q.x.is_finite() && q.phase.is_finite()))
     {
         return Err(CurveError::Start("a coordinate is not finite".into()));
     }

@@ -203,7 +203,11 @@ impl<M: Model> Tracer<'_, M> {
             }
         }
         let (theta, axis, edge) = first?;
-        let mut x: Vec<f64> = a.x.iter().zip(b).map(|(p, q)| p + theta * (q - p)).collect();
+        let mut x: Vec<f64> =
+            a.x.iter()
+                .zip(b)
+                .map(|(p, q)| p + theta * (q - p))
+                .collect();
         x[n - 2 + axis] = edge;
         let anchor = x.clone();
         let mut border = vec![0.0; n];
@@ -292,7 +296,12 @@ impl<M: Model> Tracer<'_, M> {
 
     /// A codimension-two end between `prev` and `cand` (at arclength
     /// `s_c`), located, with its kind and boundary.
-    fn codim2(&mut self, prev: &Sample, cand: &Sample, s_c: f64) -> Option<(Sample, CurveEndReason)> {
+    fn codim2(
+        &mut self,
+        prev: &Sample,
+        cand: &Sample,
+        s_c: f64,
+    ) -> Option<(Sample, CurveEndReason)> {
         let ns = matches!(
             self.sys.eval.condition,
             Condition::Eigen(TransitionKind::NeimarkSacker)
@@ -415,7 +424,11 @@ impl<M: Model> Tracer<'_, M> {
                 });
             if std::env::var_os("CURVE_DEBUG").is_some() {
                 match &accepted {
-                    Ok((c, it)) => eprintln!("ds {ds:.3e} it {it} other {:.3e} at {:?}", c.other, &c.x[c.x.len() - 2..]),
+                    Ok((c, it)) => eprintln!(
+                        "ds {ds:.3e} it {it} other {:.3e} at {:?}",
+                        c.other,
+                        &c.x[c.x.len() - 2..]
+                    ),
                     Err(e) => eprintln!("ds {ds:.3e} rejected: {e}"),
                 }
             }

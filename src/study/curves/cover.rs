@@ -118,7 +118,11 @@ impl<'a, M: Model> Cover<'a, M> {
     /// A line added by the run itself: a failed sweep there is no error
     /// (the line is only skipped).
     fn extra(&mut self, line: Line) -> bool {
-        self.line(line).unwrap_or(false)
+        let inside = match line {
+            Line::X(v) => (self.plane.x_range[0]..=self.plane.x_range[1]).contains(&v),
+            Line::Y(v) => (self.plane.y_range[0]..=self.plane.y_range[1]).contains(&v),
+        };
+        inside && self.line(line).unwrap_or(false)
     }
 
     /// Whether a traced curve of the start's transition crosses the start's

@@ -150,6 +150,11 @@ pub(super) fn sweep_line<M: Model>(
             });
         }
     }
+    // A start outside the box (a bifurcation located past a branch's
+    // bound) is none of the box's.
+    let [xl, xh] = plane.x_range;
+    let [yl, yh] = plane.y_range;
+    starts.retain(|s| (xl..=xh).contains(&s.point.x) && (yl..=yh).contains(&s.point.y));
     let labels = sw
         .points
         .iter()
