@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use stickslip::orbit::motion::OrbitError;
 use stickslip::orbit::structure::StructureError;
+use stickslip::study::curves::CurvesError;
 use stickslip::study::map::{AxisError, MapError};
 use stickslip::study::sweep::SweepError;
 use stickslip::study::trade::TradeError;
@@ -80,6 +81,22 @@ pub enum CliError {
         /// The text given.
         text: String,
     },
+    /// `curves --x`/`--y` not of the form `NAME=from:to`.
+    #[error("{option} `{text}`: expected NAME=from:to, e.g. W=0.2:8")]
+    BoxRange {
+        /// The option.
+        option: &'static str,
+        /// The text given.
+        text: String,
+    },
+    /// `curves --seed`/`--at` not of the form `NAME=v1,v2,...`.
+    #[error("{option} `{text}`: expected NAME=VALUE or NAME=v1,v2,..., e.g. Q0=70")]
+    LineValues {
+        /// The option.
+        option: &'static str,
+        /// The text given.
+        text: String,
+    },
     /// `simulate --periods 0`.
     #[error("--periods must be at least 1")]
     ZeroPeriods,
@@ -149,6 +166,9 @@ pub enum CliError {
     /// The sweep could not run.
     #[error(transparent)]
     Sweep(#[from] SweepError),
+    /// The curves run could not run.
+    #[error(transparent)]
+    Curves(#[from] CurvesError),
     /// A bad map axis.
     #[error(transparent)]
     Axis(#[from] AxisError),

@@ -3,6 +3,7 @@
 
 mod args;
 mod check;
+mod curves;
 mod describe;
 mod error;
 mod map;
@@ -55,6 +56,11 @@ enum Command {
     /// Which motions exist at each point of a grid over two parameters (the
     /// paper's Fig. 11); all cores, resumable, shardable for a cluster.
     Map(map::MapArgs),
+    /// Trace every transition curve over two parameters (grazing, stick
+    /// onset and vanishing, passable onset, fold, period doubling,
+    /// Neimark–Sacker) by continuation from the transitions sweeps locate;
+    /// their codimension-two points; the regime map drawn from them.
+    Curves(curves::CurvesArgs),
     /// Join the outputs of `map --shard k/n` into one map (and figure),
     /// identical to a single run.
     Merge(merge::MergeArgs),
@@ -74,6 +80,7 @@ impl Cli {
             Command::Sweep(args) => sweep::run(args)?,
             Command::Trade(args) => trade::run(args)?,
             Command::Map(args) => map::run(args)?,
+            Command::Curves(args) => curves::run(args)?,
             Command::Merge(args) => merge::run(args)?,
         };
         Ok(outcome.print())

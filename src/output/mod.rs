@@ -4,12 +4,14 @@
 //! * [`text`] — the text forms: a report, the trade's table;
 //! * [`history`] — a motion's sampled time history, and its CSV;
 //! * [`describe`] — a model's description (text and JSON);
+//! * [`curves_table`] — a curves run as text or JSON;
 //! * [`sweep_table`] — a sweep as text or JSON; [`map_summary`] — what a map run did;
 //! * [`figure`] — the figures (SVG or PNG): a motion's six panels, a sweep,
 //!   a map, the trade.
 //!
 //! Depends on every layer below; nothing below depends on it.
 
+pub mod curves_table;
 pub mod describe;
 pub mod figure;
 pub mod history;

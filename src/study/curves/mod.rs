@@ -5,13 +5,21 @@
 
 use serde::Serialize;
 
+mod codim2;
+mod cover;
+mod plane;
 pub mod regions;
+mod seeds;
 
 pub use regions::{regions, Regions};
 
-use crate::bifurcation::curve::Line;
+use crate::bifurcation::curve::{Curve, CurveOptions, Line};
 use crate::bifurcation::TransitionKind;
+use crate::model::param::ParamError;
 use crate::model::Model;
+use crate::study::sweep::{SweepError, SweepOptions};
+
+use cover::Cover;
 
 /// The box and the seeds of a curves run.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,10 +101,147 @@ pub enum CurvesError {
     /// A bad parameter or range.
     #[error("{0}")]
     Options(String),
+    /// `--x` or `--y` names no free parameter of the model.
+    #[error("`{name}` is not a free parameter of {model}; free: {free}")]
+    UnknownParam {
+        /// The name given.
+        name: String,
+        /// The model.
+        model: String,
+        /// Its free parameters.
+        free: String,
+    },
+    /// `--x` and `--y` name one parameter.
+    #[error("--x and --y both name `{0}`: give two different parameters")]
+    SameParam(String),
+    /// An empty, reversed or non-finite range.
+    #[error("bad range of `{name}`: {lo}:{hi} (need finite from < to)")]
+    Range {
+        /// The parameter.
+        name: String,
+        /// From.
+        lo: f64,
+        /// To.
+        hi: f64,
+    },
+    /// The model rejects its parameters at a corner of the box.
+    #[error("the box reaches invalid parameters at {at}: {source}")]
+    Corner {
+        /// The corner.
+        at: String,
+        /// Why.
+        source: ParamError,
+    },
+    /// A `--seed` or `--at` line on neither parameter of the box.
+    #[error("{what} {name}=...: `{name}` is neither --x ({x}) nor --y ({y})")]
+    LineParam {
+        /// `--seed` or `--at`.
+        what: String,
+        /// The parameter given.
+        name: String,
+        /// The horizontal parameter.
+        x: String,
+        /// The vertical one.
+        y: String,
+    },
+    /// A `--seed` or `--at` line outside the box.
+    #[error("{what} {name}={value}: outside the box's range {lo}:{hi} of `{name}`")]
+    LineOutside {
+        /// `--seed` or `--at`.
+        what: String,
+        /// The parameter.
+        name: String,
+        /// The value given.
+        value: f64,
+        /// The range's from.
+        lo: f64,
+        /// Its to.
+        hi: f64,
+    },
+    /// The sweep along a seed line failed.
+    #[error("the sweep along the seed line failed: {0}")]
+    Sweep(#[from] SweepError),
+}
+
+/// How thoroughly a curves run covers the box.
+#[derive(Clone, Copy, Debug)]
+pub struct CurvesSettings {
+    /// Grid values of each seed line's sweep.
+    pub count: usize,
+    /// Extra seed lines spread over the box, this many each way (`n`
+    /// horizontal lines at `y = lo + k (hi − lo) / (n + 1)`, and vertical ones).
+    pub spread: usize,
+    /// At most this many lines added near transitions no traced curve passes.
+    pub max_missing: usize,
+    /// At most this many lines added between neighbouring lines whose
+    /// motions differ in a way no curve between them explains.
+    pub max_refine: usize,
+    /// Transitions of motions of more mappings than this are not traced
+    /// (the long cycles of period-adding cascades: thin bands whose curves
+    /// cost a continuation of that many switching points each).
+    pub max_mappings: usize,
+    /// The sweeps' settings.
+    pub sweep: SweepOptions,
+    /// The curves' continuation.
+    pub curve: CurveOptions,
+}
+
+impl Default for CurvesSettings {
+    fn default() -> Self {
+        Self {
+            count: 100,
+            spread: 3,
+            max_missing: 6,
+            max_refine: 4,
+            max_mappings: 12,
+            sweep: SweepOptions::default(),
+            curve: CurveOptions {
+                max_points: 2000,
+                ..CurveOptions::default()
+            },
+        }
+    }
 }
 
 /// Trace every transition curve of `M` at `base` in the box of `opts`.
 pub fn curves<M: Model>(base: &M::Params, opts: &CurvesOptions) -> Result<CurveSet, CurvesError> {
-    let _ = (base, opts);
-    Err(CurvesError::Options("not built yet".into()))
+    curves_with::<M>(base, opts, &CurvesSettings::default())
+}
+
+/// [`curves`] with the given settings.
+pub fn curves_with<M: Model>(
+    base: &M::Params,
+    opts: &CurvesOptions,
+    settings: &CurvesSettings,
+) -> Result<CurveSet, CurvesError> {
+    traced::<M>(base, opts, settings).map(|(set, _)| set)
+}
+
+/// [`curves_with`], with the traced curves themselves (conditions,
+/// structures, switching points), in the order of [`CurveSet::curves`].
+pub fn traced<M: Model>(
+    base: &M::Params,
+    opts: &CurvesOptions,
+    settings: &CurvesSettings,
+) -> Result<(CurveSet, Vec<Curve>), CurvesError> {
+    let plane = opts.plane::<M>(base)?;
+    if settings.count < 2 {
+        return Err(CurvesError::Options(format!(
+            "each line's sweep needs at least 2 grid values, not {}",
+            settings.count
+        )));
+    }
+    let mut cover = Cover::<M>::new(base, plane, settings);
+    let seeds = if opts.seeds.is_empty() {
+        vec![Line::Y(0.5 * (opts.y.1[0] + opts.y.1[1]))]
+    } else {
+        opts.seeds.clone()
+    };
+    for line in seeds {
+        cover.line(line)?;
+    }
+    cover.spread();
+    cover.missing();
+    cover.refine();
+    Ok(cover.finish(opts))
 }

@@ -385,6 +385,20 @@ pub fn sweep<M: Model>(
     count: usize,
     opts: SweepOptions,
 ) -> Result<Sweep, SweepError> {
+    sweep_branches::<M>(base, name, from, to, count, opts).map(|(sweep, _)| sweep)
+}
+
+/// [`sweep`], with the branches it followed as continuation gave them
+/// (structures, switching points at their ends and bifurcations; indexed
+/// like [`Sweep::branches`]): the curves run starts from them.
+pub(crate) fn sweep_branches<M: Model>(
+    base: M::Params,
+    name: &str,
+    from: f64,
+    to: f64,
+    count: usize,
+    opts: SweepOptions,
+) -> Result<(Sweep, Vec<Branch>), SweepError> {
     let index = <M::Params as ParamSet>::index_of(name)
         .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
     if count < 2 || !from.is_finite() || !to.is_finite() || from >= to {
@@ -458,11 +472,14 @@ pub fn sweep<M: Model>(
     transitions.sort_by(|a, b| a.value.total_cmp(&b.value));
     transitions
         .dedup_by(|a, b| (a.value - b.value).abs() < 1e-8 && a.kind == b.kind && a.from == b.from);
-    Ok(Sweep {
-        param: name.to_string(),
-        points,
-        transitions,
-        branches,
-        bifurcations,
-    })
+    Ok((
+        Sweep {
+            param: name.to_string(),
+            points,
+            transitions,
+            branches,
+            bifurcations,
+        },
+        explorer.branches,
+    ))
 }

@@ -1,0 +1,390 @@
+//! Covering the box with curves: sweeps along seed lines, each transition
+//! they locate continued in both parameters unless a traced curve already
+//! passes there, and more lines where a curve must be missing.
+//!
+//! The lines, in order: the seed lines; `spread` horizontal and `spread`
+//! vertical lines evenly spaced; then, for every transition on any line
+//! that no traced curve passes (its trace failed, or it began nowhere a
+//! traced curve reaches), a line through it across its own line and one
+//! beside it (at most `max_missing`); then, between two neighbouring
+//! parallel lines, the line halfway when a motion lives on one and not the
+//! other and no curve of that motion runs between them: an island or isola
+//! seen by one line only (at most `max_refine`, never closer than 1/64 of
+//! the span). What no line crosses stays unseen: an isola smaller than the
+//! spacing of the lines and away from every line is not found.
+
+use crate::bifurcation::curve::{crossings, trace, Curve, CurveEndReason, Line, Plane};
+use crate::model::Model;
+use crate::orbit::structure::Structure;
+
+use super::codim2::{codim2_points, same_place, SAME_PLACE};
+use super::seeds::{structure_name, sweep_line, LineSweep, Start};
+use super::{CurveSet, CurveSummary, CurvesError, CurvesOptions, CurvesSettings, EndSummary};
+
+/// A transition and a curve cross a line at one place when this close
+/// (relative to the value, at least absolute).
+const ON_CURVE: f64 = 1e-7;
+
+/// Refinement lines are never closer than this fraction of the span.
+const FINEST: f64 = 1.0 / 64.0;
+
+/// Everything found so far.
+pub(super) struct Cover<'a, M: Model> {
+    base: &'a M::Params,
+    plane: Plane,
+    settings: &'a CurvesSettings,
+    /// The lines swept, in order, and what they found.
+    sweeps: Vec<LineSweep>,
+    /// The curves traced, in the order found.
+    curves: Vec<Curve>,
+    _model: std::marker::PhantomData<M>,
+}
+
+fn same_structure<M: Model>(a: Option<&Structure>, b: Option<&Structure>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => a.canonical(M::INFO).0 == b.canonical(M::INFO).0,
+        _ => false,
+    }
+}
+
+/// The value of a line, and the coordinate of a point along that line's parameter.
+fn line_value(line: Line) -> f64 {
+    match line {
+        Line::X(v) | Line::Y(v) => v,
+    }
+}
+
+/// Whether the start's motion has at most `max` mappings (is traced).
+fn traceable(start: &Start, max: usize) -> bool {
+    start.structure.as_ref().is_none_or(|s| s.len() <= max)
+}
+
+fn same_line(a: Line, b: Line) -> bool {
+    match (a, b) {
+        (Line::X(u), Line::X(v)) | (Line::Y(u), Line::Y(v)) => u == v,
+        _ => false,
+    }
+}
+
+impl<'a, M: Model> Cover<'a, M> {
+    pub fn new(base: &'a M::Params, plane: Plane, settings: &'a CurvesSettings) -> Self {
+        Self {
+            base,
+            plane,
+            settings,
+            sweeps: Vec::new(),
+            curves: Vec::new(),
+            _model: std::marker::PhantomData,
+        }
+    }
+
+    /// Sweep along `line` (once) and trace every transition found there
+    /// that no traced curve passes. Whether the line was new.
+    pub fn line(&mut self, line: Line) -> Result<bool, CurvesError> {
+        if self.sweeps.iter().any(|s| same_line(s.line, line)) {
+            return Ok(false);
+        }
+        let sw = sweep_line::<M>(
+            self.base,
+            &self.plane,
+            line,
+            self.settings.count,
+            self.settings.sweep,
+        )?;
+        let max = self.settings.max_mappings;
+        for start in sw.starts.iter().filter(|s| traceable(s, max)) {
+            if self.on_curve(start) {
+                continue;
+            }
+            let Ok(curve) = trace::<M>(
+                self.base,
+                &self.plane,
+                start.structure.as_ref(),
+                &start.point,
+                start.condition,
+                &self.settings.curve,
+            ) else {
+                continue;
+            };
+            if !curve.points.is_empty() {
+                self.curves.push(curve);
+            }
+        }
+        self.sweeps.push(sw);
+        Ok(true)
+    }
+
+    /// A line added by the run itself: a failed sweep there is no error
+    /// (the line is only skipped).
+    fn extra(&mut self, line: Line) -> bool {
+        let inside = match line {
+            Line::X(v) => (self.plane.x_range[0]..=self.plane.x_range[1]).contains(&v),
+            Line::Y(v) => (self.plane.y_range[0]..=self.plane.y_range[1]).contains(&v),
+        };
+        inside && self.line(line).unwrap_or(false)
+    }
+
+    /// Whether a traced curve of the start's transition crosses the start's
+    /// line at the start.
+    fn on_curve(&self, start: &Start) -> bool {
+        let along = |x: f64, y: f64| match start.line {
+            Line::Y(_) => x,
+            Line::X(_) => y,
+        };
+        let at = along(start.point.x, start.point.y);
+        let tol = ON_CURVE * at.abs().max(1.0);
+        let v = line_value(start.line);
+        self.curves.iter().any(|c| {
+            if c.kind != start.kind
+                || c.boundary != start.boundary
+                || !same_structure::<M>(c.structure.as_ref(), start.structure.as_ref())
+            {
+                return false;
+            }
+            // Only a curve reaching the line can cross it.
+            let across = |x: f64, y: f64| match start.line {
+                Line::Y(_) => y,
+                Line::X(_) => x,
+            };
+            let (lo, hi) = c
+                .points
+                .iter()
+                .fold((f64::INFINITY, -f64::INFINITY), |b, p| {
+                    let a = across(p.x, p.y);
+                    (b.0.min(a), b.1.max(a))
+                });
+            if v < lo - tol || v > hi + tol {
+                return false;
+            }
+            crossings::<M>(self.base, &self.plane, c, start.line, &self.settings.curve)
+                .iter()
+                .any(|q| (along(q.x, q.y) - at).abs() <= tol)
+        })
+    }
+
+    /// The evenly spread lines.
+    pub fn spread(&mut self) {
+        let n = self.settings.spread;
+        let [xl, xh] = self.plane.x_range;
+        let [yl, yh] = self.plane.y_range;
+        for k in 1..=n {
+            let f = k as f64 / (n + 1) as f64;
+            self.extra(Line::Y(yl + f * (yh - yl)));
+            self.extra(Line::X(xl + f * (xh - xl)));
+        }
+    }
+
+    /// Lines through, and beside, every transition no traced curve passes.
+    pub fn missing(&mut self) {
+        let mut budget = self.settings.max_missing;
+        let mut next = 0;
+        // Lines added here are swept too and may show more such transitions.
+        while next < self.sweeps.len() && budget > 0 {
+            let starts = self.sweeps[next].starts.clone();
+            next += 1;
+            for start in starts {
+                if budget == 0 {
+                    break;
+                }
+                if !traceable(&start, self.settings.max_mappings) || self.on_curve(&start) {
+                    continue;
+                }
+                let [xl, xh] = self.plane.x_range;
+                let [yl, yh] = self.plane.y_range;
+                let beside = |v: f64, lo: f64, hi: f64| {
+                    let d = FINEST * (hi - lo);
+                    if v + d <= hi {
+                        v + d
+                    } else {
+                        v - d
+                    }
+                };
+                let (through, near) = match start.line {
+                    Line::Y(_) => (
+                        Line::X(start.point.x),
+                        Line::X(beside(start.point.x, xl, xh)),
+                    ),
+                    Line::X(_) => (
+                        Line::Y(start.point.y),
+                        Line::Y(beside(start.point.y, yl, yh)),
+                    ),
+                };
+                for l in [through, near] {
+                    if budget > 0 && self.extra(l) {
+                        budget -= 1;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Halfway lines between neighbouring parallel lines whose motions
+    /// differ unexplained.
+    pub fn refine(&mut self) {
+        let mut budget = self.settings.max_refine;
+        loop {
+            let Some(line) = self.unexplained() else {
+                return;
+            };
+            if budget == 0 || !self.extra(line) {
+                return;
+            }
+            budget -= 1;
+        }
+    }
+
+    /// The first halfway line (horizontal lines first, lowest first) between
+    /// neighbours that disagree unexplained.
+    fn unexplained(&self) -> Option<Line> {
+        let spans = [
+            self.plane.y_range[1] - self.plane.y_range[0],
+            self.plane.x_range[1] - self.plane.x_range[0],
+        ];
+        for (horizontal, span) in [(true, spans[0]), (false, spans[1])] {
+            let mut lines: Vec<(f64, &LineSweep)> = self
+                .sweeps
+                .iter()
+                .filter_map(|s| match (s.line, horizontal) {
+                    (Line::Y(v), true) | (Line::X(v), false) => Some((v, s)),
+                    _ => None,
+                })
+                .collect();
+            lines.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for w in lines.windows(2) {
+                let ((a, sa), (b, sb)) = (w[0], w[1]);
+                if b - a < 2.0 * FINEST * span {
+                    continue;
+                }
+                let (ma, mb) = (
+                    motions(sa, self.settings.max_mappings),
+                    motions(sb, self.settings.max_mappings),
+                );
+                let differ = ma
+                    .iter()
+                    .filter(|m| !mb.contains(m))
+                    .chain(mb.iter().filter(|m| !ma.contains(m)));
+                for m in differ {
+                    if !self.runs_between(m, horizontal, a, b) {
+                        let mid = 0.5 * (a + b);
+                        return Some(if horizontal {
+                            Line::Y(mid)
+                        } else {
+                            Line::X(mid)
+                        });
+                    }
+                }
+            }
+        }
+        None
+    }
+
+    /// Whether a curve of motion `name` has a point strictly between the
+    /// lines `a < b` (horizontal lines: in `y`).
+    fn runs_between(&self, name: &str, horizontal: bool, a: f64, b: f64) -> bool {
+        self.curves.iter().any(|c| {
+            let own = match &c.structure {
+                None => "NM".to_string(),
+                Some(s) => s.notation(M::INFO),
+            };
+            own == name
+                && c.points.iter().any(|p| {
+                    let v = if horizontal { p.y } else { p.x };
+                    v > a && v < b
+                })
+        })
+    }
+
+    /// The curves in a stable order, their codim-2 points and `--at` crossings.
+    pub fn finish(self, opts: &CurvesOptions) -> (CurveSet, Vec<Curve>) {
+        let mut curves = self.curves;
+        let key = |c: &Curve| {
+            let first = c
+                .points
+                .iter()
+                .map(|p| (p.x, p.y))
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)))
+                .unwrap_or((f64::NAN, f64::NAN));
+            (
+                c.kind.name(),
+                c.boundary,
+                structure_name::<M>(c.structure.as_ref()),
+                first,
+            )
+        };
+        curves.sort_by(|a, b| {
+            let (ka, kb) = (key(a), key(b));
+            (ka.0, ka.1, &ka.2)
+                .cmp(&(kb.0, kb.1, &kb.2))
+                .then(ka.3 .0.total_cmp(&kb.3 .0))
+                .then(ka.3 .1.total_cmp(&kb.3 .1))
+        });
+        let codim2 = codim2_points(&self.plane, &curves);
+        let summaries = curves
+            .iter()
+            .map(|c| {
+                let end = |k: usize| {
+                    let e = c.ends.get(k)?;
+                    let (reason, detail) = match &e.reason {
+                        CurveEndReason::BoxEdge => ("box_edge", None),
+                        CurveEndReason::Codim2 { .. } => ("codim2", None),
+                        CurveEndReason::NewtonFailure(why) => ("newton_failure", Some(why.clone())),
+                        CurveEndReason::MaxPoints => ("max_points", None),
+                    };
+                    let codim2 = matches!(e.reason, CurveEndReason::Codim2 { .. })
+                        .then(|| {
+                            codim2.iter().position(|q| {
+                                same_place(&self.plane, SAME_PLACE, (q.x, q.y), (e.at.x, e.at.y))
+                            })
+                        })
+                        .flatten();
+                    Some(EndSummary {
+                        reason: reason.to_string(),
+                        point: [e.at.x, e.at.y],
+                        codim2,
+                        detail,
+                    })
+                };
+                let at = opts
+                    .at
+                    .iter()
+                    .flat_map(|&l| {
+                        crossings::<M>(self.base, &self.plane, c, l, &self.settings.curve)
+                    })
+                    .map(|q| [q.x, q.y])
+                    .collect();
+                CurveSummary {
+                    kind: c.kind,
+                    boundary: c.boundary.map(|k| M::INFO.boundaries[k].label.to_string()),
+                    structure: structure_name::<M>(c.structure.as_ref()),
+                    from: end(0),
+                    to: end(1),
+                    points: c.points.iter().map(|p| [p.x, p.y]).collect(),
+                    at,
+                }
+            })
+            .collect();
+        let set = CurveSet {
+            x: opts.x.clone(),
+            y: opts.y.clone(),
+            curves: summaries,
+            codim2,
+        };
+        (set, curves)
+    }
+}
+
+/// The motions seen anywhere along a line (by name, without `^N`), of at
+/// most `max_mappings` mappings.
+fn motions(s: &LineSweep, max_mappings: usize) -> Vec<&str> {
+    let mut out: Vec<&str> = s
+        .labels
+        .iter()
+        .flat_map(|l| l.split(';'))
+        .filter(|m| !m.is_empty() && *m != "stick")
+        .filter(|m| m.split_whitespace().count() <= max_mappings)
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out
+}

@@ -1,0 +1,192 @@
+//! `stickslip curves` run as a user runs it: the JSON's shape and keys
+//! (ends and codim-2 points keyed by the parameters' names), the text
+//! blocks, two runs giving identical JSON, and every bad input a clear
+//! message naming the argument, a non-zero status, no panic.
+
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+const BIN: &str = env!("CARGO_BIN_EXE_stickslip");
+
+/// A small box around the stick motions at W ≈ 3.7, Q0 ≈ 70, a short grid.
+const SMALL: [&str; 12] = [
+    "curves", "--model", "paper", "--x", "W=3:4.5", "--y", "Q0=60:80", "--count", "24", "--spread",
+    "1", "--json",
+];
+
+fn run(args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {BIN}: {e}"))
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8(b.to_vec()).expect("UTF-8")
+}
+
+fn keys(v: &Value) -> Vec<&str> {
+    v.as_object()
+        .unwrap_or_else(|| panic!("{v} is not an object"))
+        .keys()
+        .map(String::as_str)
+        .collect()
+}
+
+fn with(extra: &[&str]) -> Vec<String> {
+    SMALL.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
+#[test]
+fn json_has_the_documented_shape_and_is_deterministic() {
+    let args = with(&["--at", "Q0=67,73", "--seed", "Q0=70"]);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let first = run(&args);
+    assert!(first.status.success(), "{}", text(&first.stderr));
+    let v: Value = serde_json::from_slice(&first.stdout).expect("JSON");
+    assert_eq!(keys(&v), ["x", "y", "curves", "codim2"]);
+    assert_eq!(v["x"], "W");
+    assert_eq!(v["y"], "Q0");
+    let curves = v["curves"].as_array().expect("curves");
+    assert!(!curves.is_empty(), "no curve in the small box: {v}");
+    for c in curves {
+        assert_eq!(
+            keys(c),
+            [
+                "kind",
+                "boundary",
+                "structure",
+                "from",
+                "to",
+                "points",
+                "at"
+            ]
+        );
+        assert!(c["kind"].is_string());
+        assert!(
+            c["structure"].as_str().expect("structure").starts_with('P') || c["structure"] == "NM"
+        );
+        for p in c["points"].as_array().expect("points") {
+            let p = p.as_array().expect("[x, y]");
+            assert_eq!(p.len(), 2);
+            let (w, q) = (p[0].as_f64().expect("W"), p[1].as_f64().expect("Q0"));
+            assert!(
+                (3.0 - 1e-9..=4.5 + 1e-9).contains(&w),
+                "W = {w} outside the box"
+            );
+            assert!(
+                (60.0 - 1e-9..=80.0 + 1e-9).contains(&q),
+                "Q0 = {q} outside the box"
+            );
+        }
+        for a in c["at"].as_array().expect("at") {
+            let q = a[1].as_f64().expect("Q0");
+            assert!(q == 67.0 || q == 73.0, "a crossing off the --at lines: {a}");
+        }
+        for end in [&c["from"], &c["to"]] {
+            if end.is_null() {
+                continue;
+            }
+            let k = keys(end);
+            assert_eq!(&k[..3], ["end", "W", "Q0"], "{end}");
+            let reason = end["end"].as_str().expect("end");
+            assert!(
+                ["box_edge", "codim2", "newton_failure", "max_points"].contains(&reason),
+                "{reason}"
+            );
+            assert_eq!(end.get("codim2").is_some(), reason == "codim2", "{end}");
+            assert_eq!(
+                end.get("detail").is_some(),
+                reason == "newton_failure",
+                "{end}"
+            );
+        }
+    }
+    for q in v["codim2"].as_array().expect("codim2") {
+        assert_eq!(keys(q), ["W", "Q0", "kinds", "curves"]);
+    }
+    let second = run(&args);
+    assert_eq!(text(&first.stdout), text(&second.stdout), "two runs differ");
+}
+
+#[test]
+fn text_has_a_block_per_curve() {
+    let args = with(&[]);
+    let args: Vec<&str> = args
+        .iter()
+        .map(String::as_str)
+        .filter(|a| *a != "--json")
+        .collect();
+    let o = run(&args);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let out = text(&o.stdout);
+    assert!(
+        out.starts_with("Transition curves in W = 3..4.5, Q0 = 60..80"),
+        "{out}"
+    );
+    assert!(out.contains("\ncurve 0: "), "{out}");
+    assert!(
+        out.contains("  from: ") && out.contains("  points: "),
+        "{out}"
+    );
+}
+
+/// Each bad input: status 1, `error:` naming the argument, no panic.
+#[test]
+fn bad_input_is_a_clear_error() {
+    let cases: [(&[&str], &str); 12] = [
+        (
+            &["--x", "Foo=0:1", "--y", "Q0=0:180"],
+            "`Foo` is not a free parameter",
+        ),
+        (
+            &["--x", "W=0.2:8", "--y", "Bar=0:1"],
+            "`Bar` is not a free parameter",
+        ),
+        (&["--x", "W=0.2:8", "--y", "W=1:2"], "both name `W`"),
+        (&["--x", "W=3:3", "--y", "Q0=0:180"], "bad range of `W`"),
+        (&["--x", "W=8:0.2", "--y", "Q0=0:180"], "bad range of `W`"),
+        (
+            &["--x", "W=0.2:8", "--y", "Q0=NaN:180"],
+            "bad range of `Q0`",
+        ),
+        (&["--x", "W=0.2:8", "--y", "Q0=0:inf"], "bad range of `Q0`"),
+        (&["--x", "W0.2:8", "--y", "Q0=0:180"], "--x `W0.2:8`"),
+        (
+            &["--x", "W=0.2:8", "--y", "Q0=0:180", "--seed", "Q0=500"],
+            "--seed Q0=500",
+        ),
+        (
+            &["--x", "W=0.2:8", "--y", "Q0=0:180", "--seed", "d=0.1"],
+            "`d` is neither",
+        ),
+        (
+            &["--x", "W=0.2:8", "--y", "Q0=0:180", "--at", "W=1,nine"],
+            "--at `W=1,nine`",
+        ),
+        (
+            &["--x", "W=0.2:8", "--y", "Q0=0:180", "--at", "W=9"],
+            "--at W=9",
+        ),
+    ];
+    for (args, message) in cases {
+        let mut all = vec!["curves", "--model", "paper"];
+        all.extend_from_slice(args);
+        let o = run(&all);
+        let err = text(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{all:?}: {err}");
+        assert!(err.starts_with("error: "), "{all:?}: {err}");
+        assert!(err.contains(message), "{all:?}: `{err}` lacks `{message}`");
+        assert!(!err.contains("panicked"), "{all:?}: {err}");
+    }
+}
+
+#[test]
+fn a_bad_plot_path_fails_before_any_work() {
+    let o = run(&[
+        "curves", "--x", "W=0.2:8", "--y", "Q0=0:180", "--plot", "map.txt",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o.stderr).contains("unknown figure format"));
+}
