@@ -120,13 +120,17 @@ pub fn classify_point<M: Model>(
     result
 }
 
+/// A grid point's coordinates and checked parameters, or its coordinates
+/// and the `invalid: …` status.
+pub(super) type PointParams<P> = Result<(f64, f64, P), (f64, f64, String)>;
+
 /// Grid point `index`: `(x, y, parameters)`, checked; or `(x, y, "invalid: …")`.
 pub(super) fn point_params<M: Model>(
     base: &M::Params,
     x_axis: &GridAxis,
     y_axis: &GridAxis,
     index: usize,
-) -> Result<(f64, f64, M::Params), (f64, f64, String)> {
+) -> PointParams<M::Params> {
     let nx = x_axis.count.max(1);
     let (ix, iy) = (index % nx, index / nx);
     let (x, y) = (x_axis.value(ix), y_axis.value(iy));
