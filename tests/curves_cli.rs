@@ -190,3 +190,28 @@ fn a_bad_plot_path_fails_before_any_work() {
     assert_eq!(o.status.code(), Some(1));
     assert!(text(&o.stderr).contains("unknown figure format"));
 }
+
+/// `map --curves` draws curves over the map's figure, so it needs `--plot`:
+/// without it clap refuses before any work, naming the missing argument.
+#[test]
+fn map_curves_needs_a_plot() {
+    let dir = std::env::temp_dir().join(format!("stickslip-map-curves-{}", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    let out = dir.join("m.csv");
+    let o = run(&[
+        "map",
+        "--model",
+        "paper",
+        "--x",
+        "W=3.8:4.4:3",
+        "--y",
+        "Q0=65:75:2",
+        "--out",
+        out.to_str().unwrap(),
+        "--curves",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
+    assert!(text(&o.stderr).contains("--plot"), "{}", text(&o.stderr));
+    assert!(!out.exists(), "nothing computed");
+    let _ = std::fs::remove_dir_all(&dir);
+}

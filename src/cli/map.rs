@@ -4,9 +4,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use stickslip::output::figure::map::plot_map;
+use stickslip::output::figure::map::{draw_map_with_curves, plot_map};
 use stickslip::output::map_summary;
-use stickslip::study::map::{run_map, GridAxis, MapMethod, MapOptions, Shard};
+use stickslip::study::curves::{curves, CurvesOptions};
+use stickslip::study::map::{run_map, GridAxis, MapFile, MapMethod, MapOptions, Shard};
 use stickslip::Model;
 
 use super::args::{check_plot_path, with_model, Assignments, WithModel};
@@ -47,6 +48,11 @@ pub struct MapArgs {
     /// Draw the map into FILE (.svg or .png) when it is complete.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// Also trace the transition curves over the map's box (what `stickslip
+    /// curves` does, seeded along the middle line) and draw them over the
+    /// classified grid. Tracing can take minutes on a large box.
+    #[arg(long, requires = "plot")]
+    curves: bool,
 }
 
 /// Compute the map (or resume it, or one shard), draw it, summarize it.
@@ -77,7 +83,19 @@ impl WithModel for MapCmd {
         };
         let summary = run_map::<M>(&base, &x, &y, &self.args.out, &opts)?;
         if let Some(plot) = &self.args.plot {
-            plot_map(&self.args.out, plot)?;
+            if self.args.curves && summary.complete {
+                let span = |a: &GridAxis| [a.from.min(a.to), a.from.max(a.to)];
+                let opts = CurvesOptions {
+                    x: (x.name.clone(), span(&x)),
+                    y: (y.name.clone(), span(&y)),
+                    seeds: Vec::new(),
+                    at: Vec::new(),
+                };
+                let set = curves::<M>(&base, &opts)?;
+                draw_map_with_curves(&MapFile::read(&self.args.out)?, Some(&set), plot)?;
+            } else {
+                plot_map(&self.args.out, plot)?;
+            }
         }
         Ok(Outcome::ok(map_summary::text(&summary, &self.args.out)))
     }
