@@ -262,6 +262,7 @@ fn paper_curves_satisfy_their_conditions_and_match_branches_at_other_q0() {
     }
     eprintln!("{specials} special points");
     // Other Q0: the branches' ends and bifurcations lie on the curves.
+    let mut total_matched = 0;
     for q in [40.0, 100.0, 150.0] {
         let mut found = Vec::new();
         for (i, c) in curves.iter().enumerate() {
@@ -318,7 +319,14 @@ fn paper_curves_satisfy_their_conditions_and_match_branches_at_other_q0() {
             }
         }
         eprintln!("Q0 = {q}: {} crossings, {matched} matched", found.len());
+        total_matched += matched;
     }
+    // A crossing with no branch is skipped above, so the check must not be
+    // empty: every one of the 17 crossings has a branch that locates it.
+    assert!(
+        total_matched >= 17,
+        "only {total_matched} crossings checked against branches"
+    );
 }
 
 /// The Coulomb oscillator of issue 11's fold (V = 0, static 1.5× kinetic).

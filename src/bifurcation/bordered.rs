@@ -27,7 +27,7 @@
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 use crate::model::{Model, ParamSet};
-use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 /// A point of the extended space: switching points and the parameter.
@@ -167,15 +167,7 @@ impl<M: Model> Bordered<M> {
 
     #[inline]
     fn ends(&self, points: &[SwitchingPoint], k: usize) -> (SwitchingPoint, SwitchingPoint) {
-        let b = if k + 1 < points.len() {
-            points[k + 1]
-        } else {
-            SwitchingPoint {
-                phase: points[0].phase + self.shift,
-                x: points[0].x,
-            }
-        };
-        (points[k], b)
+        (points[k], arrival(points, k, self.shift))
     }
 
     /// The scaled inner product's weight of component `(x, W t)`.

@@ -23,6 +23,7 @@ use nalgebra::Vector2;
 use crate::bifurcation::bordered::{Bordered, Correction, State, Vector};
 use crate::bifurcation::branch::{Bifurcation, Branch, BranchEnd, BranchPoint, EndReason};
 use crate::bifurcation::detect::{self, Tests};
+use crate::bifurcation::locate::regula_falsi;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::param::ParamError;
@@ -231,7 +232,8 @@ impl<M: Model> Continuer<'_, M> {
 
     /// Regula falsi (Illinois) in arclength on `g` over `[0, s_bad]` from
     /// `from` (`g > 0` there, `g(s_bad) <= 0` or undefined) until the
-    /// bracket is below `s_tol`; returns the last good sample (or `from`).
+    /// bracket is below `s_tol` ([`super::locate::regula_falsi`]); returns
+    /// the last good sample (or `from`) and the last bad one.
     fn locate(
         &mut self,
         from: &Sample,
@@ -240,63 +242,16 @@ impl<M: Model> Continuer<'_, M> {
         s_tol: f64,
         g: impl Fn(&Sample) -> f64,
     ) -> (Sample, Option<Sample>) {
-        let g_from = g(from);
-        let (mut lo, mut glo) = (0.0, g_from);
-        let (mut hi, mut ghi) = (s_bad, g_bad);
-        let mut good: Option<Sample> = None;
-        let mut bad: Option<Sample> = None;
-        let mut side = 0i8;
-        for _ in 0..200 {
-            if (hi - lo).abs() <= s_tol {
-                break;
-            }
-            let mut s = if glo.is_finite() && ghi.is_finite() && glo != ghi {
-                let (wl, wh) = match side {
-                    1 => (0.5, 1.0),
-                    -1 => (1.0, 0.5),
-                    _ => (1.0, 1.0),
-                };
-                lo + (hi - lo) * (wl * glo) / (wl * glo - wh * ghi)
-            } else {
-                0.5 * (lo + hi)
-            };
-            let span = hi - lo;
-            if !(s > lo + 1e-3 * span && s < hi - 1e-3 * span) || side.abs() == 2 {
-                s = 0.5 * (lo + hi);
-                side = 0;
-            }
-            // No tangent at the trials: near a branch point it is ill-posed,
-            // and the located quantities do not need it (the trial keeps
-            // the step's tangent; a fold is classified by the step's ends).
-            let sample = self
-                .corrected(from, s, 4 * self.opts.newton.max_iterations)
+        let iterations = 4 * self.opts.newton.max_iterations;
+        // No tangent at the trials: near a branch point it is ill-posed,
+        // and the located quantities do not need it (the trial keeps
+        // the step's tangent; a fold is classified by the step's ends).
+        let trial = |s: f64| {
+            self.corrected(from, s, iterations)
                 .and_then(|(x, _)| self.examine(x, from.tangent.clone()))
-                .ok();
-            match sample {
-                Some(smp) => {
-                    let v = g(&smp);
-                    if v > 0.0 {
-                        lo = s;
-                        glo = v;
-                        good = Some(smp);
-                        side = if side == 1 { 2 } else { 1 };
-                    } else {
-                        hi = s;
-                        ghi = if v.is_nan() { f64::NAN } else { v };
-                        bad = Some(smp);
-                        side = if side == -1 { -2 } else { -1 };
-                    }
-                    if v == 0.0 {
-                        break;
-                    }
-                }
-                None => {
-                    hi = s;
-                    ghi = f64::NAN;
-                    side = 0;
-                }
-            }
-        }
+                .ok()
+        };
+        let (good, bad) = regula_falsi(g(from), s_bad, g_bad, s_tol, trial, g);
         (good.unwrap_or_else(|| from.clone()), bad)
     }
 

@@ -12,6 +12,7 @@ pub mod branch;
 pub mod continuation;
 pub mod curve;
 mod detect;
+mod locate;
 pub mod switching;
 
 pub use branch::{Bifurcation, Branch, BranchEnd, BranchPoint, EndReason};

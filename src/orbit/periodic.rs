@@ -25,6 +25,39 @@ pub struct SwitchingPoint {
     pub x: f64,
 }
 
+/// The arrival of mapping `k` of a cycle: point `k + 1`, or for the last
+/// mapping the first point one cycle later (its phase advanced by `shift`,
+/// 2π times the cycle's forcing periods).
+#[inline]
+pub fn arrival(points: &[SwitchingPoint], k: usize, shift: f64) -> SwitchingPoint {
+    if k + 1 < points.len() {
+        points[k + 1]
+    } else {
+        SwitchingPoint {
+            phase: points[0].phase + shift,
+            x: points[0].x,
+        }
+    }
+}
+
+/// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` of the cycle of
+/// mappings `steps` at `points`, ordered `(W t, x)` (SPEC §7, Eq. B.1), or
+/// the index of the first mapping whose arrival is tangent to its boundary.
+pub fn monodromy<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> Result<Matrix2<f64>, usize> {
+    let mut dp = Matrix2::identity();
+    for (k, (&step, a)) in steps.iter().zip(points).enumerate() {
+        let b = arrival(points, k, shift);
+        let e = M::mapping(p, step, a.x, a.phase, b.x, b.phase);
+        dp = e.local_jacobian().ok_or(k)? * dp;
+    }
+    Ok(dp)
+}
+
 /// Why Newton stopped.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "outcome", rename_all = "snake_case")]
@@ -190,15 +223,7 @@ impl<M: Model> PeriodicSolver<M> {
     /// The point after point `k` (wrapping with the period shift).
     #[inline]
     fn next(&self, points: &[SwitchingPoint], k: usize) -> SwitchingPoint {
-        let m = points.len();
-        if k + 1 < m {
-            points[k + 1]
-        } else {
-            SwitchingPoint {
-                phase: points[0].phase + self.shift,
-                x: points[0].x,
-            }
-        }
+        arrival(points, k, self.shift)
     }
 
     /// Mapping `k` evaluated at the current points.
@@ -499,15 +524,9 @@ impl<M: Model> PeriodicSolver<M> {
         p: &M::Params,
         points: &[SwitchingPoint],
     ) -> Result<Matrix2<f64>, SingularStep> {
-        let mut dp = Matrix2::identity();
-        for k in 0..points.len() {
-            let e = self.evaluate(p, points, k);
-            let local = e.local_jacobian().ok_or(SingularStep {
-                segment: Some(k),
-                reason: "the arrival is tangent to the boundary (grazing)",
-            })?;
-            dp = local * dp;
-        }
-        Ok(dp)
+        monodromy::<M>(p, self.structure.steps(), self.shift, points).map_err(|k| SingularStep {
+            segment: Some(k),
+            reason: "the arrival is tangent to the boundary (grazing)",
+        })
     }
 }

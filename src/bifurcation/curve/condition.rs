@@ -24,34 +24,9 @@ use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
 use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
-use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::periodic::{monodromy, SwitchingPoint};
 use crate::orbit::steady::steady_response;
 use crate::orbit::structure::Structure;
-
-/// `(tr DP, det DP)` of the motion, `None` where a mapping's arrival is singular.
-pub(super) fn trace_det<M: Model>(
-    p: &M::Params,
-    steps: &[usize],
-    shift: f64,
-    points: &[SwitchingPoint],
-) -> Option<Matrix2<f64>> {
-    let m = points.len();
-    let mut dp = Matrix2::identity();
-    for k in 0..m {
-        let a = points[k];
-        let b = if k + 1 < m {
-            points[k + 1]
-        } else {
-            SwitchingPoint {
-                phase: points[0].phase + shift,
-                x: points[0].x,
-            }
-        };
-        let e = M::mapping(p, steps[k], a.x, a.phase, b.x, b.phase);
-        dp = e.local_jacobian()? * dp;
-    }
-    Some(dp)
-}
 
 /// The value of an eigenvalue test function at `dp`.
 pub(super) fn eigen_value(kind: TransitionKind, dp: &Matrix2<f64>) -> f64 {
@@ -173,7 +148,8 @@ impl<M: Model> Evaluator<M> {
     /// where it cannot be evaluated.
     pub fn value(&mut self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
         match self.condition {
-            Condition::Eigen(kind) => trace_det::<M>(p, &self.steps, self.shift, points)
+            Condition::Eigen(kind) => monodromy::<M>(p, &self.steps, self.shift, points)
+                .ok()
                 .map_or(f64::NAN, |dp| eigen_value(kind, &dp)),
             Condition::Margin {
                 kind,
@@ -260,7 +236,8 @@ pub fn condition_scale<M: Model>(
         Condition::Eigen(_) => {
             let steps = structure.map_or(&[][..], |s| s.steps());
             let shift = std::f64::consts::TAU * structure.map_or(1, |s| s.periods()) as f64;
-            trace_det::<M>(p, steps, shift, points)
+            monodromy::<M>(p, steps, shift, points)
+                .ok()
                 .map_or(1.0, |dp| 1.0 + dp.trace().abs() + dp.determinant().abs())
         }
         Condition::RestGrazing { .. } => {

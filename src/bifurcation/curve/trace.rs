@@ -17,11 +17,12 @@ use crate::bifurcation::detect;
 use crate::bifurcation::TransitionKind;
 use crate::model::{Model, ParamSet};
 use crate::orbit::admissible::ViolationKind;
+use crate::orbit::periodic::monodromy;
 use crate::orbit::stability::Stability;
 
-use super::condition::trace_det;
 use super::extended::Extended;
 use super::{Condition, CurveEndReason, CurveOptions, Plane};
+use crate::bifurcation::locate::regula_falsi;
 
 /// An accepted point and what is watched there.
 #[derive(Clone, Debug)]
@@ -73,7 +74,7 @@ impl<M: Model> Tracer<'_, M> {
         let mut pts = vec![crate::orbit::periodic::SwitchingPoint { phase: 0.0, x: 0.0 }; m];
         Extended::<M>::points_into(&x, &mut pts);
         let dp = if m > 0 {
-            trace_det::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
+            monodromy::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts).ok()
         } else {
             None
         };
@@ -116,8 +117,9 @@ impl<M: Model> Tracer<'_, M> {
     }
 
     /// Regula falsi (Illinois) in arclength on `g` over `[0, s_bad]` from
-    /// `from` (`g > 0` there, `g(s_bad) <= 0` or undefined); returns the
-    /// last good and bad samples.
+    /// `from` (`g > 0` there, `g(s_bad) <= 0` or undefined) to the location
+    /// tolerance ([`crate::bifurcation::locate::regula_falsi`]); returns the
+    /// last good sample (or `from`) and the last bad one.
     fn locate(
         &mut self,
         from: &Sample,
@@ -127,59 +129,12 @@ impl<M: Model> Tracer<'_, M> {
     ) -> (Sample, Option<Sample>) {
         let spans = self.sys.spans();
         let s_tol = self.opts.location_tolerance / spans[0].max(spans[1]);
-        let (mut lo, mut glo) = (0.0, g(from));
-        let (mut hi, mut ghi) = (s_bad, g_bad);
-        let mut good: Option<Sample> = None;
-        let mut bad: Option<Sample> = None;
-        let mut side = 0i8;
-        for _ in 0..200 {
-            if (hi - lo).abs() <= s_tol {
-                break;
-            }
-            let mut s = if glo.is_finite() && ghi.is_finite() && glo != ghi {
-                let (wl, wh) = match side {
-                    1 => (0.5, 1.0),
-                    -1 => (1.0, 0.5),
-                    _ => (1.0, 1.0),
-                };
-                lo + (hi - lo) * (wl * glo) / (wl * glo - wh * ghi)
-            } else {
-                0.5 * (lo + hi)
-            };
-            let span = hi - lo;
-            if !(s > lo + 1e-3 * span && s < hi - 1e-3 * span) || side.abs() == 2 {
-                s = 0.5 * (lo + hi);
-                side = 0;
-            }
-            let sample = self
-                .corrected(from, s, 4 * NEWTON_ITERATIONS)
+        let trial = |s: f64| {
+            self.corrected(from, s, 4 * NEWTON_ITERATIONS)
                 .and_then(|(x, _)| self.examine(x, from.t.clone()))
-                .ok();
-            match sample {
-                Some(smp) => {
-                    let v = g(&smp);
-                    if v > 0.0 {
-                        lo = s;
-                        glo = v;
-                        good = Some(smp);
-                        side = if side == 1 { 2 } else { 1 };
-                    } else {
-                        hi = s;
-                        ghi = if v.is_nan() { f64::NAN } else { v };
-                        bad = Some(smp);
-                        side = if side == -1 { -2 } else { -1 };
-                    }
-                    if v == 0.0 {
-                        break;
-                    }
-                }
-                None => {
-                    hi = s;
-                    ghi = f64::NAN;
-                    side = 0;
-                }
-            }
-        }
+                .ok()
+        };
+        let (good, bad) = regula_falsi(g(from), s_bad, g_bad, s_tol, trial, g);
         (good.unwrap_or_else(|| from.clone()), bad)
     }
 
@@ -331,7 +286,8 @@ impl<M: Model> Tracer<'_, M> {
             let m = (n - 2) / 2;
             let mut pts = vec![crate::orbit::periodic::SwitchingPoint { phase: 0.0, x: 0.0 }; m];
             Extended::<M>::points_into(&good.x, &mut pts);
-            let tr = trace_det::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
+            let tr = monodromy::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
+                .ok()
                 .map_or(0.0, |d| d.trace());
             let kind = if tr >= 0.0 {
                 TransitionKind::Fold

@@ -13,7 +13,7 @@
 use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
 use crate::model::{MappingKind, Model, Side};
 use crate::orbit::extrema::SegmentFlow;
-use crate::orbit::periodic::SwitchingPoint;
+use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 mod sink;
@@ -405,15 +405,7 @@ fn walk<M: Model>(
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
         let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
-        let a = points[k];
-        let b = if k + 1 < m {
-            points[k + 1]
-        } else {
-            SwitchingPoint {
-                phase: points[0].phase + shift,
-                x: points[0].x,
-            }
-        };
+        let (a, b) = (points[k], arrival(points, k, shift));
         let mut add =
             |kind: ViolationKind,
              boundary: Option<usize>,
