@@ -49,6 +49,7 @@ use crate::orbit::known::{self, KnownMotions, Settled};
 use crate::orbit::motion::{segment_at, Motion, OrbitError};
 use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
 use crate::orbit::stability::Stability;
+use crate::orbit::steady::steady_response;
 use crate::orbit::structure::Structure;
 
 use super::classify::{failure, panic_text, point_params, starts, structure_label};
@@ -155,19 +156,13 @@ impl<M: Model> Continuer<M> {
 /// (certified by [`no_motion_certificate`] at the response itself, where the
 /// decaying part is zero). Every start near it stays: a damped linear flow.
 pub fn no_motion_exists<M: Model>(sim: &Simulator<M>) -> bool {
-    let osc = sim.oscillator();
+    let w = sim.oscillator().frequency;
     (0..M::INFO.domains.len()).any(|j| {
-        let co = sim.coefficients(j);
-        let (d, c, w) = (0.5 * co.two_d, co.c, osc.frequency);
-        if d.is_nan() || d <= 0.0 || c == 0.0 {
-            return false;
-        }
-        let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
-        let a = osc.amplitude * (c - w * w) / den;
-        let b = 2.0 * d * w * osc.amplitude / den;
-        // The forced response at phase 0.
-        let (x, v) = (a - co.b / c, w * b);
-        no_motion_certificate(sim, j, x, v, 0.0).is_some()
+        // The forced response at phase 0 (`c = 0`: no finite response).
+        steady_response::<M>(sim.params(), j).is_some_and(|r| {
+            let (x, v) = (r.a + r.offset, w * r.b);
+            x.is_finite() && no_motion_certificate(sim, j, x, v, 0.0).is_some()
+        })
     })
 }
 
