@@ -9,7 +9,8 @@
 //! * [`motion`] — a solved, checked periodic motion;
 //! * [`attractor`] — what a simulation settles on: a motion, a stick, a family;
 //! * [`steady`] — a domain's steady forced response in closed form (the no-motion regime);
-//! * [`known`] — known stable motions seen stroboscopically, and a settle that stops near one.
+//! * [`known`] — known stable motions seen stroboscopically, and a settle that stops near one;
+//! * [`lyapunov`] — Lyapunov exponents of the stroboscopic map from the exact tangent map.
 //!
 //! Depends on [`crate::model`](mod@crate::model) and [`crate::dynamics`].
 
@@ -18,6 +19,7 @@ pub mod attractor;
 pub mod extrema;
 pub mod family;
 pub mod known;
+pub mod lyapunov;
 pub mod motion;
 pub mod periodic;
 pub mod stability;
