@@ -20,7 +20,7 @@ use common::counting::{allocations, Counting};
 use stickslip::bifurcation::bordered::Correction;
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, crossings, system, trace, unknowns, Condition, Curve,
-    CurveOptions, CurvePoint, Line, Plane,
+    CurveEndReason, CurveOptions, CurvePoint, Line, Plane,
 };
 use stickslip::bifurcation::{
     follow, Branch, ContinuationOptions, EndReason, Start, TransitionKind,
@@ -740,4 +740,40 @@ fn sweeps_at_other_q0_locate_the_curves_crossings() {
         matched >= 3,
         "only {matched} crossings located by the sweeps"
     );
+}
+
+/// A passable-onset curve along which `DP` is singular (the arrival on Σ1
+/// is tangential all along it, so its eigenvalues are noise): it used to
+/// crawl in steps of 1e-8 until `max_points` (the curves run's seed line
+/// Q0 = 135 starts it at W = 2.57386); it must cross the box.
+#[test]
+fn a_passable_onset_curve_with_singular_dp_crosses_the_box() {
+    use stickslip::models::paper::{Paper, Params};
+    use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
+    let base = Params::default();
+    let opts = CurvesOptions {
+        x: ("W".into(), [2.4, 2.8]),
+        y: ("Q0".into(), [130.0, 140.0]),
+        seeds: vec![Line::Y(135.0)],
+        at: Vec::new(),
+    };
+    let settings = CurvesSettings {
+        spread: 0,
+        ..CurvesSettings::default()
+    };
+    let plane = opts.plane::<Paper>(&base).expect("a valid box");
+    let (_, curves) = traced::<Paper>(&base, &opts, &settings).expect("the run runs");
+    let c = curves
+        .iter()
+        .find(|c| c.kind == TransitionKind::PassableOnset)
+        .expect("the passable-onset curve");
+    eprintln!("{}", describe(c));
+    assert!(
+        c.ends.iter().all(|e| e.reason == CurveEndReason::BoxEdge),
+        "{}",
+        describe(c)
+    );
+    assert!(c.points.len() < 500, "{}", describe(c));
+    let worst = worst_on_curve::<Paper>(&base, &plane, c);
+    assert!(worst <= 1e-10, "worst condition {worst:e}");
 }

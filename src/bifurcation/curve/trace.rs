@@ -6,7 +6,9 @@
 //! A step is rejected (and halved) when the corrector fails, moves the
 //! point by more than half the step, turns the tangent by more than about
 //! 37°, or moves an eigenvalue of `DP` by more than 0.25 (as
-//! [`crate::bifurcation::continuation`]); it grows by 1.5 after an easy
+//! [`crate::bifurcation::continuation`]) unless the half step moved it as
+//! much (then `DP` is singular along the curve, as on a passable onset where
+//! an arrival is tangential, and its eigenvalues are noise); it grows by 1.5 after an easy
 //! correction. Codimension-two points and special points are located by
 //! regula falsi (Illinois) in arclength, each trial a corrected point, until
 //! the bracket is below `location_tolerance` in both parameters.
@@ -333,6 +335,10 @@ impl<M: Model> Tracer<'_, M> {
         let mut prev = start.clone();
         let mut ds = opts.initial_step;
         let mut travelled = 0.0;
+        // The eigenvalue jump that rejected the last step, if one did.
+        let mut last_jump: Option<f64> = None;
+        // Whether `DP` has shown itself singular along this curve.
+        let mut erratic = false;
         if self.on_box_edge_leaving(&prev) {
             return Run {
                 points,
@@ -371,7 +377,16 @@ impl<M: Model> Tracer<'_, M> {
                     let smp = self.examine(x, t)?;
                     if let (Some(a), Some(b)) = (&prev.stability, &smp.stability) {
                         let jump = detect::eigenvalue_jump(a, b);
-                        if jump > 0.25 && ds > 16.0 * opts.min_step {
+                        // Eigenvalues that move continuously move less over
+                        // half the step. When halving it leaves the jump as
+                        // large, `DP` is singular or discontinuous along the
+                        // curve (an arrival tangential all along it, as on a
+                        // passable onset) and the check protects nothing.
+                        if last_jump.is_some_and(|j| jump > 0.9 * j) {
+                            erratic = true;
+                        }
+                        if jump > 0.25 && ds > 16.0 * opts.min_step && !erratic {
+                            last_jump = Some(jump);
                             return Err(format!(
                                 "an eigenvalue of DP jumps by {jump:.3e} over the step"
                             ));
@@ -380,7 +395,10 @@ impl<M: Model> Tracer<'_, M> {
                     Ok((smp, it))
                 });
             let (mut cand, iterations) = match accepted {
-                Ok(c) => c,
+                Ok(c) => {
+                    last_jump = None;
+                    c
+                }
                 Err(_) if ds > opts.min_step => {
                     ds = (0.5 * ds).max(opts.min_step);
                     continue;
