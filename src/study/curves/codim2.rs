@@ -111,9 +111,24 @@ pub(super) fn codim2_points(plane: &Plane, curves: &[Curve]) -> Vec<Codim2Point>
     let mut out: Vec<Codim2Point> = found
         .into_iter()
         .map(|m| {
-            let mut kinds: Vec<TransitionKind> = m.conditions.iter().map(|c| c.0).collect();
+            // Each meeting on a curve names two conditions; one that
+            // names the same transition twice (two grazings of one
+            // boundary, by different segments) keeps both.
+            let mut distinct = m.conditions.clone();
+            distinct.sort_by_key(|c| (c.0.name(), c.1));
+            distinct.dedup();
+            let mut kinds: Vec<TransitionKind> = Vec::new();
+            for c in &distinct {
+                let twice = m
+                    .conditions
+                    .chunks_exact(2)
+                    .any(|p| p[0] == *c && p[1] == *c);
+                kinds.push(c.0);
+                if twice {
+                    kinds.push(c.0);
+                }
+            }
             kinds.sort_by_key(|k| k.name());
-            kinds.dedup();
             let mut curves = m.curves;
             curves.sort_unstable();
             curves.dedup();

@@ -2,7 +2,7 @@
 //! they locate continued in both parameters unless a traced curve already
 //! passes there, and more lines where a curve must be missing.
 //!
-//! The lines, in order: the seed lines; `spread` horizontal and `spread`
+//! The lines, in order: the seed lines and the `--at` lines; `spread` horizontal and `spread`
 //! vertical lines evenly spaced; then, for every transition on any line
 //! that no traced curve passes (its trace failed, or it began nowhere a
 //! traced curve reaches), a line through it across its own line and one

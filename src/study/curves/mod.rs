@@ -240,6 +240,13 @@ pub fn traced<M: Model>(
     for line in seeds {
         cover.line(line)?;
     }
+    // The lines whose crossings are asked for are swept too, so that every
+    // transition a sweep locates on them starts a curve.
+    for &line in &opts.at {
+        if !opts.seeds.contains(&line) {
+            cover.line(line)?;
+        }
+    }
     cover.spread();
     cover.missing();
     cover.refine();
