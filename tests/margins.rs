@@ -18,7 +18,10 @@
 //!    velocities involved), perturbed points included.
 //!
 //! And `worst_margin` is the smallest margin of `conditions`, with its kind,
-//! segment and boundary.
+//! segment and boundary; `violations` (a motion's admissibility, which takes
+//! each extremum's value where the closed form puts it) is the violated
+//! subset of `conditions`, with the same texts and the margins to rounding
+//! (1e-13 of the velocities involved).
 
 mod common;
 
@@ -29,7 +32,7 @@ use stickslip::models::paper::{self, Paper};
 use stickslip::models::stribeck::pl16::{self, Pl16};
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::{
-    conditions, worst_margin, Violation, ViolationKind, SAME_EVENT,
+    conditions, violations, worst_margin, Violation, ViolationKind, SAME_EVENT,
 };
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::motion::solve;
@@ -399,6 +402,10 @@ struct Tally {
     violated: usize,
     interior: usize,
     bitwise_sampled: usize,
+    /// Violated interior conditions compared with `violations`.
+    violated_interior: usize,
+    /// Their largest difference, relative to the velocities.
+    largest_difference: f64,
     differs_from_sampled: Vec<String>,
 }
 
@@ -475,6 +482,32 @@ fn compare<M: Model>(
             "a converged motion must keep its margins: {diff}"
         );
         tally.differs_from_sampled.push(diff);
+    }
+    // violations: the violated ones, each extremum from the closed form.
+    let violated = violations(sim, structure, points);
+    let expected: Vec<&Violation> = fast
+        .iter()
+        .filter(|c| c.margin.is_nan() || c.margin <= 0.0)
+        .collect();
+    assert_eq!(
+        violated.len(),
+        expected.len(),
+        "{what}: {violated:#?}\n{expected:#?}"
+    );
+    for (v, e) in violated.iter().zip(&expected) {
+        let at = format!("{what}: violation {v:?} vs condition {e:?}");
+        assert_eq!(
+            (v.segment, v.kind, v.boundary, &v.condition),
+            (e.segment, e.kind, e.boundary, &e.condition),
+            "{at}"
+        );
+        let scale = vscale.max(e.margin.abs());
+        assert!(same(v.margin, e.margin, 1e-13 * scale), "{at}");
+        if e.kind == ViolationKind::Interior && e.margin.is_finite() {
+            tally.violated_interior += 1;
+            let d = (v.margin - e.margin).abs() / scale;
+            tally.largest_difference = tally.largest_difference.max(d);
+        }
     }
     // worst_margin: the smallest of them, NaN first.
     let worst = worst_margin(sim, structure, points).expect("points");
@@ -640,12 +673,20 @@ fn fast_margins_match_the_sampled_and_dense_references() {
         attractor(&format!("stribeck8 at W = {w}"), &sim, &mut rng, &mut tally);
     }
     eprintln!(
-        "{} point sets, {} conditions ({} interior, {} violated); {} bitwise as the sampled search",
-        tally.point_sets, tally.conditions, tally.interior, tally.violated, tally.bitwise_sampled
+        "{} point sets, {} conditions ({} interior, {} violated); {} bitwise as the sampled search; \
+         violations: {} interior ones within {:.1e} (relative) of the conditions",
+        tally.point_sets,
+        tally.conditions,
+        tally.interior,
+        tally.violated,
+        tally.bitwise_sampled,
+        tally.violated_interior,
+        tally.largest_difference
     );
     for d in tally.differs_from_sampled.iter().take(20) {
         eprintln!("differs from the sampled search (off a motion): {d}");
     }
+    assert!(tally.violated_interior > 0, "{tally:?}");
     assert!(
         tally.violated > 200,
         "too few violated conditions: {tally:?}"

@@ -9,6 +9,11 @@
 //! its sign costs one evaluation, and the event search of the simulation is
 //! run only where a margin is too small for the closed form to decide alone.
 //! The text of a condition is written only when it is violated.
+//!
+//! An extremum's value is taken where the former sampled search puts it
+//! (so that the margins the located transitions depend on keep their last
+//! bits), except for [`violations`], where only the signs matter: there it
+//! is the closed form's value at its zero of the acceleration.
 
 use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
 use crate::model::{MappingKind, Model, Side};
@@ -156,6 +161,8 @@ struct InteriorMargin<'a, M: Model> {
     /// The last extremum seen, its sample interval, and whether another
     /// extremum shares that interval.
     pending: Option<(f64, usize, bool)>,
+    /// Take every extremum's value from the closed form (no re-location).
+    closed_form: bool,
 }
 
 impl<'a, M: Model> InteriorMargin<'a, M> {
@@ -166,8 +173,10 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         touched: [usize; 2],
         j: usize,
         flow: Option<SegmentFlow>,
+        closed_form: bool,
     ) -> Self {
         Self {
+            closed_form,
             flow,
             sampled: SampledSearch {
                 sim,
@@ -213,8 +222,13 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         self.consider(v, true);
     }
 
-    /// The next extremum of `v` (a zero of the acceleration) at phase `t`.
-    fn extremum(&mut self, t: f64) {
+    /// The next extremum of `v` (a zero of the acceleration) at phase `t`,
+    /// where the closed form gives the velocity `v`.
+    fn extremum(&mut self, t: f64, v: f64) {
+        if self.closed_form {
+            self.consider(v, true);
+            return;
+        }
         let i = self.sampled.interval(t);
         self.pending = match self.pending.take() {
             Some((u, iu, _)) if iu == i => {
@@ -263,18 +277,20 @@ struct FlowCheck {
     arrives: bool,
 }
 
-/// The interior margin of the flow of `seg` (domain `j`) to phase `b` on
-/// boundary `to`, and whether its arrival is certain (`dep`: the
+/// The interior margin of the flow of `seg` to phase `b` on boundary `to`
+/// (collected by `margin`, which knows the domain and the boundaries the
+/// segment touches), and whether its arrival is certain (`dep`: the
 /// departure's acceleration into the domain).
 fn check_flow<M: Model>(
     sim: &Simulator<M>,
     flow: &SegmentFlow,
     seg: &Segment,
-    j: usize,
-    [from, to]: [usize; 2],
+    to: usize,
     b: f64,
     dep: f64,
+    mut margin: InteriorMargin<'_, M>,
 ) -> FlowCheck {
+    let j = margin.sampled.j;
     let dom = M::INFO.domains[j];
     let co = sim.coefficients(j);
     let osc = sim.oscillator();
@@ -290,13 +306,12 @@ fn check_flow<M: Model>(
     // Closer than this to a boundary, the event search decides.
     let near = (100.0 * sim.options().graze_tol).max(1e-9 * vscale);
     let mut clear = true;
-    let mut margin = InteriorMargin::new(sim, seg, b, [from, to], j, Some(*flow));
     flow.acceleration_zeros(seg.phase, b + tol, |t, s| {
         if t > b {
             clear = false;
             return;
         }
-        margin.extremum(t);
+        margin.extremum(t, s.v);
         clear &= lo.is_none_or(|l| s.v - l > near) && hi.is_none_or(|h| h - s.v > near);
     });
     let e = flow.at(b);
@@ -402,6 +417,7 @@ fn walk<M: Model>(
     let label = |k: usize| info.boundaries[k].label;
     // Each margin as a smooth function of the points: no event search.
     let smooth = out.smooth();
+    let closed_form = out.closed_form_extrema();
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
         let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
@@ -522,10 +538,19 @@ fn walk<M: Model>(
                     location: Location::Domain(j),
                     search_from: a.phase,
                 };
-                let check =
-                    SegmentFlow::new(sim.oscillator(), sim.coefficients(j), a.x, va, a.phase).map(
-                        |f| check_flow(sim, &f, &seg, j, [mi.from, mi.to], b.phase, into * acc0),
-                    );
+                let check = SegmentFlow::new(
+                    sim.oscillator(),
+                    sim.coefficients(j),
+                    a.x,
+                    va,
+                    a.phase,
+                )
+                .map(|f| {
+                    let ends = [mi.from, mi.to];
+                    let margin =
+                        InteriorMargin::new(sim, &seg, b.phase, ends, j, Some(f), closed_form);
+                    check_flow(sim, &f, &seg, mi.to, b.phase, into * acc0, margin)
+                });
                 // A flow the closed form cannot follow has no margin.
                 let interior = || match &check {
                     Some(c) => c.interior,
