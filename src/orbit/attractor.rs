@@ -444,6 +444,15 @@ pub fn find_or_stop<M: Model, T>(
                 if let Some(t) = stop(&seg, strobe) {
                     return Ok(Settle::Stopped(t));
                 }
+                // The certificate is a proof at any state: checked every
+                // period here, where the search runs period by period anyway,
+                // instead of only after a whole chunk without events.
+                if let Location::Domain(j) = seg.location {
+                    let (x, v) = sim.state_at(&seg, strobe);
+                    if let Some(nm) = no_motion_certificate(sim, j, x, v, strobe) {
+                        return settled(Attractor::NoMotion(nm));
+                    }
+                }
                 strobe += TAU;
             }
         }

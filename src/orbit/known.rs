@@ -86,6 +86,8 @@ struct Entry {
     rho: Option<f64>,
     /// Neighbourhood radius (a length; zero for a motion that is not stable).
     radius: f64,
+    /// Largest radius allowed by the caller ([`KnownMotions::insert_within`]).
+    reach: f64,
     /// `[x_min, x_max, v_min, v_max]` over the switching points and states.
     extent: [f64; 4],
 }
@@ -144,6 +146,20 @@ impl KnownMotions {
     /// other known motion, and [`settle`] stops only once the distance has
     /// contracted over one return of the motion (see there).
     pub fn insert<M: Model>(&mut self, sim: &Simulator<M>, id: usize, motion: &Motion) {
+        self.insert_within(sim, id, motion, f64::INFINITY);
+    }
+
+    /// [`insert`](Self::insert), with the radius also at most `reach` (a
+    /// length): for a motion near a transition, where a state farther than
+    /// `reach` from it may cross the transition and go elsewhere although
+    /// the map is contracting there.
+    pub fn insert_within<M: Model>(
+        &mut self,
+        sim: &Simulator<M>,
+        id: usize,
+        motion: &Motion,
+        reach: f64,
+    ) {
         let states = stroboscopic_states(sim, motion, self.phase0);
         let w = self.frequency;
         let info = M::INFO;
@@ -184,6 +200,7 @@ impl KnownMotions {
             scale,
             rho,
             radius: 0.0,
+            reach: if reach.is_nan() { 0.0 } else { reach.max(0.0) },
             extent,
         });
         self.update_radii();
@@ -212,7 +229,7 @@ impl KnownMotions {
                     .flat_map(|(_, o)| o.states.iter())
                     .flat_map(|b| e.states.iter().map(move |a| dist(a, b)))
                     .fold(f64::INFINITY, f64::min);
-                own.min(0.25 * apart)
+                own.min(0.25 * apart).min(e.reach)
             })
             .collect();
         for (e, r) in self.entries.iter_mut().zip(radii) {
