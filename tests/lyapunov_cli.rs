@@ -101,3 +101,45 @@ fn bad_input_is_a_clear_error() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
 }
+
+/// `map` says what it found where the starts do not settle (issue 13 item 4):
+/// the chaotic point of tests/lyapunov.rs, with both methods, twice
+/// (byte-identical files).
+#[test]
+fn map_names_chaos_instead_of_unsettled() {
+    let dir = std::env::temp_dir().join(format!("lyapunov_cli_map_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let mut files = Vec::new();
+    for (k, method) in ["simulation", "continuation", "simulation"]
+        .iter()
+        .enumerate()
+    {
+        let out = dir.join(format!("map{k}.csv"));
+        let (ok, stdout, err) = stickslip(&[
+            "map",
+            "--model",
+            "stribeck8",
+            "--x",
+            "W=2.38:2.38:1",
+            "--y",
+            "Q0=3:3:1",
+            "--method",
+            method,
+            "--out",
+            out.to_str().expect("utf-8 path"),
+        ]);
+        assert!(ok, "{err}");
+        let text = std::fs::read_to_string(&out).expect("map file");
+        assert!(
+            text.contains("start 1: chaotic (lambda1 = ") && !text.contains("unsettled"),
+            "{method}: {text}"
+        );
+        assert!(
+            stdout.contains("chaotic") || err.contains("chaotic"),
+            "{stdout}{err}"
+        );
+        files.push(text);
+    }
+    assert_eq!(files[0], files[2], "a map is deterministic");
+    std::fs::remove_dir_all(&dir).ok();
+}
