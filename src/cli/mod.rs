@@ -6,6 +6,7 @@ mod check;
 mod curves;
 mod describe;
 mod error;
+mod lyapunov;
 mod map;
 mod merge;
 mod models;
@@ -61,6 +62,10 @@ enum Command {
     /// Neimark–Sacker) by continuation from the transitions sweeps locate;
     /// their codimension-two points; the regime map drawn from them.
     Curves(curves::CurvesArgs),
+    /// The Lyapunov exponents of the stroboscopic map from the exact tangent
+    /// map (stick and every switching included), with an error estimate and
+    /// a verdict: periodic, chaotic, quasi-periodic, NM or stick.
+    Lyapunov(lyapunov::LyapunovArgs),
     /// Join the outputs of `map --shard k/n` into one map (and figure),
     /// identical to a single run.
     Merge(merge::MergeArgs),
@@ -82,6 +87,7 @@ impl Cli {
             Command::Map(args) => map::run(args)?,
             Command::Curves(args) => curves::run(args)?,
             Command::Merge(args) => merge::run(args)?,
+            Command::Lyapunov(args) => lyapunov::run(args)?,
         };
         Ok(outcome.print())
     }

@@ -2,6 +2,7 @@
 //!
 //! * [`report`] — the report of `orbit` and `simulate`, with its JSON schema;
 //! * [`text`] — the text forms: a report, the trade's table;
+//! * [`lyapunov_report`] — the Lyapunov spectrum as text or JSON;
 //! * [`history`] — a motion's sampled time history, and its CSV;
 //! * [`describe`] — a model's description (text and JSON);
 //! * [`curves_table`] — a curves run as text or JSON;
@@ -15,6 +16,7 @@ pub mod curves_table;
 pub mod describe;
 pub mod figure;
 pub mod history;
+pub mod lyapunov_report;
 pub mod map_summary;
 pub mod report;
 pub mod sweep_table;

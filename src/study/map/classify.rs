@@ -7,6 +7,7 @@ use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::param::ParamSet;
 use crate::model::Model;
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
+use crate::orbit::lyapunov::{spectrum, LyapunovOptions, Verdict};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::Termination;
 use crate::orbit::structure::Structure;
@@ -66,6 +67,44 @@ pub(super) fn failure<M: Model>(e: &OrbitError) -> String {
         other => format!("error ({other})"),
     }
 }
+
+/// What a start that did not settle does instead (issue 13), from the
+/// Lyapunov spectrum after the search's periods: `chaotic (lambda1 = …)`,
+/// `quasi_periodic (…)`, `cycle longer than 32 periods (…)`, or, where the
+/// spectrum finds a repeat after all, the motion it settles on later.
+pub(super) fn unsettled<M: Model>(
+    sim: &Simulator<M>,
+    start: (f64, f64, f64),
+    e: &OrbitError,
+) -> String {
+    let opts = LyapunovOptions {
+        transient: MAX_PERIODS,
+        periods: UNSETTLED_PERIODS,
+    };
+    let Ok(s) = spectrum(sim, start, opts) else {
+        return failure::<M>(e);
+    };
+    let (l, err) = (s.exponents[0], s.error);
+    match s.verdict {
+        Verdict::Chaotic => format!("chaotic (lambda1 = {l:.3e} +- {err:.1e})"),
+        Verdict::QuasiPeriodic => format!("quasi_periodic (lambda1 = {l:.1e} +- {err:.1e})"),
+        Verdict::LongCycle { longer_than } => {
+            format!("cycle longer than {longer_than} periods (lambda1 = {l:.3e} +- {err:.1e})")
+        }
+        Verdict::Periodic { structure, n } => {
+            let n = if n > 1 {
+                format!("^{n}")
+            } else {
+                String::new()
+            };
+            format!("{} (settles later on {structure}{n})", failure::<M>(e))
+        }
+        Verdict::NoMotion | Verdict::Stick => failure::<M>(e),
+    }
+}
+
+/// Forcing periods of the spectrum of a start that did not settle.
+const UNSETTLED_PERIODS: u32 = 2000;
 
 /// The two starts of every grid point: rest, and `v` one above the stick
 /// boundary (or the highest boundary) half a forcing period later.
@@ -191,6 +230,11 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
             Ok(Attractor::NoMotion(_)) => no_motion = true,
             Ok(Attractor::Stick(_)) => stick = true,
             Ok(Attractor::Autonomous(_)) => autonomous = true,
+            Err(e @ OrbitError::Unsettled { .. }) => problems.push(format!(
+                "start {}: {}",
+                k + 1,
+                unsettled::<M>(&sim, (x0, v0, phase0), &e)
+            )),
             Err(e) => problems.push(format!("start {}: {}", k + 1, failure::<M>(&e))),
         }
     }

@@ -52,7 +52,7 @@ use crate::orbit::stability::Stability;
 use crate::orbit::steady::steady_response;
 use crate::orbit::structure::Structure;
 
-use super::classify::{failure, panic_text, point_params, starts, structure_label};
+use super::classify::{failure, panic_text, point_params, starts, structure_label, unsettled};
 use super::file::PointResult;
 use super::grid::{tile_points, GridAxis};
 use super::{MAX_PERIODS, NO_MOTION, STICK};
@@ -385,6 +385,11 @@ fn settle_cell<M: Model>(cell: &mut Cell<M>, lost: &[&Motion]) {
             .start(x0, v0, phase0)
             .map_err(OrbitError::from)
             .and_then(|seg| known::settle(&sim, &known, seg, opts).outcome);
+        if let Err(e @ OrbitError::Unsettled { .. }) = &found {
+            let what = unsettled::<M>(&sim, (x0, v0, phase0), e);
+            problems.push(format!("start {}: {what}", k + 1));
+            continue;
+        }
         if let Err(e) = take(cell, found) {
             problems.push(format!("start {}: {e}", k + 1));
         }

@@ -31,7 +31,8 @@ pub struct PointResult {
 
 impl PointResult {
     /// The point's class on the map: its motions joined by ` + `, or, when
-    /// none was found, the status's first word (`invalid`, `unsettled`, …).
+    /// none was found, the status's first word (`invalid`, `unsettled`,
+    /// `chaotic`, `quasi_periodic`, …; `cycle longer than N` whole).
     pub fn label(&self) -> String {
         if !self.motions.is_empty() {
             return self.motions.join(" + ");
@@ -41,6 +42,9 @@ impl PointResult {
             .strip_prefix("start ")
             .and_then(|r| r.split_once(": ").map(|(_, rest)| rest))
             .unwrap_or(s);
+        if s.starts_with("cycle longer than ") {
+            return s.split(" periods").next().unwrap_or(s).to_string();
+        }
         s.split([':', ' ', ';'])
             .next()
             .filter(|w| !w.is_empty())
@@ -477,6 +481,12 @@ mod tests {
             motions: Vec::new(),
         };
         assert_eq!(p.label(), "unsettled");
+        p.status = "start 1: chaotic (lambda1 = 9.7e-2 +- 3.0e-3); start 2: chaotic (…)".into();
+        assert_eq!(p.label(), "chaotic");
+        p.status = "start 1: cycle longer than 32 periods (lambda1 = -1.0e-3 +- 1.0e-4)".into();
+        assert_eq!(p.label(), "cycle longer than 32");
+        p.status = "start 1: quasi_periodic (lambda1 = 1.0e-5 +- 1.0e-4)".into();
+        assert_eq!(p.label(), "quasi_periodic");
         p.status = "invalid: the forcing frequency is 0; it must be positive".into();
         assert_eq!(p.label(), "invalid");
         p.motions = vec!["NM".into(), "P_{3_33 4_33}".into()];
