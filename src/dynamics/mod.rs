@@ -12,3 +12,4 @@
 pub mod crossing;
 pub mod integrate;
 pub mod simulate;
+pub mod tangent;

@@ -107,6 +107,34 @@ impl PiecewiseOde {
         t_end: f64,
         rtol: f64,
     ) -> Vec<RefEvent> {
+        self.run(t0, x0, v0, domain, t_end, rtol, false).0
+    }
+
+    /// [`Self::integrate`], stopping exactly at `t_end`: the events, and the
+    /// state `(x, v)` and the domain (`None`: stuck) there.
+    pub fn integrate_to(
+        &self,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        domain: Option<usize>,
+        t_end: f64,
+        rtol: f64,
+    ) -> (Vec<RefEvent>, [f64; 2], Option<usize>) {
+        self.run(t0, x0, v0, domain, t_end, rtol, true)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &self,
+        t0: f64,
+        x0: f64,
+        v0: f64,
+        domain: Option<usize>,
+        t_end: f64,
+        rtol: f64,
+        exact_end: bool,
+    ) -> (Vec<RefEvent>, [f64; 2], Option<usize>) {
         let mut events = Vec::new();
         let (mut t, mut y) = (t0, [x0, v0]);
         let mut domain = domain;
@@ -122,7 +150,7 @@ impl PiecewiseOde {
                     let fnf = |s: f64| self.fnf(vs, ts + s, xs + vs * s);
                     let out = |s: f64| fnf(s).abs() >= bound;
                     let Some(s) = first_point(0.0, 1e-3 / w, t_end - ts, out, 1e-16 * t_end) else {
-                        return events;
+                        return (events, [xs + vs * (t_end - ts), vs], None);
                     };
                     t = ts + s;
                     y = [xs + vs * s, vs];
@@ -150,7 +178,11 @@ impl PiecewiseOde {
                         }
                     };
                     // One adaptive step (5th-order error control).
-                    let hs = h.min(t_end + 1.0 - t);
+                    let hs = if exact_end {
+                        h.min(t_end - t)
+                    } else {
+                        h.min(t_end + 1.0 - t)
+                    };
                     let st = self.step(j, t, y, hs);
                     let en = st.error_norm(rtol);
                     if en > 1.0 {
@@ -213,6 +245,6 @@ impl PiecewiseOde {
                 }
             }
         }
-        events
+        (events, y, domain)
     }
 }
