@@ -29,7 +29,7 @@ fn fixed_colour(name: &str) -> Option<RGBColor> {
         "NM" => Some(RGBColor(236, 236, 228)),
         "stick" => Some(RGBColor(90, 90, 90)),
         "chaotic" | "quasi-periodic" | "autonomous cycle" => None,
-        _ if name.starts_with("P_") => None,
+        _ if name.starts_with("P_") || name.starts_with("cycle longer") => None,
         _ => Some(RGBColor(160, 160, 160)),
     }
 }

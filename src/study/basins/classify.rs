@@ -163,6 +163,9 @@ pub fn irregular<M: Model>(
                 Verdict::Periodic { structure, .. } => structure.clone(),
                 Verdict::NoMotion => NO_MOTION.to_string(),
                 Verdict::Stick => STICK.to_string(),
+                Verdict::LongCycle { longer_than } => {
+                    format!("cycle longer than {longer_than} periods")
+                }
             };
             (label, Some(s.exponents[0]))
         }
