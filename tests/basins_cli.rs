@@ -37,8 +37,19 @@ fn fails(args: &[&str], needles: &[&str]) {
 
 fn basins<'a>(out: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
     let mut a = vec![
-        "basins", "--set", "W=3.94826,Q0=70", "--x", "x=0.98:1.02:6", "--y", "v=1.3:1.4:5",
-        "--samples", "20", "--lyapunov", "0", "--out", out,
+        "basins",
+        "--set",
+        "W=3.94826,Q0=70",
+        "--x",
+        "x=0.98:1.02:6",
+        "--y",
+        "v=1.3:1.4:5",
+        "--samples",
+        "20",
+        "--lyapunov",
+        "0",
+        "--out",
+        out,
     ];
     a.extend_from_slice(extra);
     a
@@ -93,12 +104,21 @@ fn bad_input_is_a_clear_error() {
     fails_with(with("--x", "W=3:4:5"), &["--x", "must vary `x`"]);
     fails_with(with("--y", "x=0:1:5"), &["--y", "must vary `v`"]);
     fails_with(with("--set", "Wq=3"), &["`Wq` is not a parameter"]);
-    fails(&["basins", "--model", "nope", "--x", "x=0:1:2", "--y", "v=0:1:2"], &["unknown model `nope`"]);
+    fails(
+        &[
+            "basins", "--model", "nope", "--x", "x=0:1:2", "--y", "v=0:1:2",
+        ],
+        &["unknown model `nope`"],
+    );
     fails_with(with("--set", "W=-1"), &["W"]);
 
     // A resume of a file written with other settings.
     let ok = run(&basins(out, &[]));
-    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
     fails(&basins(out, &[]), &["already exists", "--resume"]);
     let mut other = basins(out, &["--resume"]);
     let i = other.iter().position(|s| *s == "--samples").unwrap();
@@ -110,18 +130,37 @@ fn bad_input_is_a_clear_error() {
     fails(&other, &["different basin run", "W=3.9483"]);
     fs::write(out, "hello\n").unwrap();
     fails(&basins(out, &["--resume"]), &["not a stickslip basin file"]);
-    fails(&basins(out, &["--plot", "b.txt"]), &["unknown figure format"]);
+    fails(
+        &basins(out, &["--plot", "b.txt"]),
+        &["unknown figure format"],
+    );
 }
 
 #[test]
 fn orbit_diagram_bad_input_is_a_clear_error() {
-    let base = ["orbit-diagram", "--set", "Q0=70", "--lyapunov", "0", "--no-branches"];
+    let base = [
+        "orbit-diagram",
+        "--set",
+        "Q0=70",
+        "--lyapunov",
+        "0",
+        "--no-branches",
+    ];
     let with = |extra: &[&'static str]| -> Vec<&'static str> {
         base.iter().copied().chain(extra.iter().copied()).collect()
     };
-    fails(&with(&["--param", "W=3:4"]), &["W=3:4", "NAME=from:to:count"]);
+    fails(
+        &with(&["--param", "W=3:4"]),
+        &["W=3:4", "NAME=from:to:count"],
+    );
     fails(&with(&["--param", "W=3:4:0"]), &["point count"]);
-    fails(&with(&["--param", "Wx=3:4:3"]), &["`Wx` is not a parameter"]);
+    fails(
+        &with(&["--param", "Wx=3:4:3"]),
+        &["`Wx` is not a parameter"],
+    );
     fails(&with(&["--param", "W=3:inf:3"]), &["finite"]);
-    fails(&with(&["--param", "W=3:4:3", "--periods", "0"]), &["--periods"]);
+    fails(
+        &with(&["--param", "W=3:4:3", "--periods", "0"]),
+        &["--periods"],
+    );
 }

@@ -72,7 +72,11 @@ fn samples_are(c: &Column, states: &[(f64, f64)], tol: f64) {
             .enumerate()
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .unwrap();
-        assert!(d < tol, "W = {}: sample ({x}, {v}) is {d:e} from {states:?}", c.value);
+        assert!(
+            d < tol,
+            "W = {}: sample ({x}, {v}) is {d:e} from {states:?}",
+            c.value
+        );
         hit[k] = true;
     }
     assert!(hit.iter().all(|&h| h), "W = {}: {hit:?}", c.value);
@@ -98,7 +102,12 @@ fn the_diagram_shows_the_exact_motions_and_the_hysteresis() {
     assert!(d.up.windows(2).all(|w| w[0].value < w[1].value));
     assert!(d.down.windows(2).all(|w| w[0].value > w[1].value));
     let sw = sweep::<Paper>(params(3.6), "W", from, to, count, SweepOptions::default()).unwrap();
-    let point = |w: f64| sw.points.iter().find(|p| (p.value - w).abs() < 1e-9).unwrap();
+    let point = |w: f64| {
+        sw.points
+            .iter()
+            .find(|p| (p.value - w).abs() < 1e-9)
+            .unwrap()
+    };
 
     // W = 3.6: a single stable period-1 motion; both directions sit on it.
     let single = exact(point(3.6));
@@ -134,7 +143,11 @@ fn the_diagram_shows_the_exact_motions_and_the_hysteresis() {
         .iter()
         .find(|b| b.n == 1 && b.points.iter().any(|p| (p.value - 3.6).abs() < 1e-12))
         .unwrap();
-    let q = p1_branch.points.iter().find(|p| (p.value - 3.6).abs() < 1e-12).unwrap();
+    let q = p1_branch
+        .points
+        .iter()
+        .find(|p| (p.value - 3.6).abs() < 1e-12)
+        .unwrap();
     assert!((q.x[0] - single[0].1[0].0).abs() < 1e-8 && (q.v[0] - single[0].1[0].1).abs() < 1e-8);
 
     // Deterministic.

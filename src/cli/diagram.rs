@@ -116,17 +116,22 @@ fn clusters(xs: &[f64]) -> usize {
     s.windows(2).filter(|w| w[1] - w[0] > tol).count() + usize::from(!s.is_empty())
 }
 
-fn describe(c: &Column) -> String {
+/// What the samples show: their number of distinct points, or no repetition.
+fn shape(c: &Column) -> String {
     if let Some(e) = &c.error {
         return format!("error: {e}");
     }
     let n = clusters(&c.x);
     let k = c.x.len();
-    let what = if n >= k.min(32) && k >= 32 {
+    if n >= k.min(32) && k >= 32 {
         "no repetition in the samples".to_string()
     } else {
         format!("{n} distinct point{}", if n == 1 { "" } else { "s" })
-    };
+    }
+}
+
+fn describe(c: &Column) -> String {
+    let what = shape(c);
     match c.exponent {
         Some(e) => format!("{what}, largest exponent {e:.6}"),
         None => what,
@@ -144,7 +149,7 @@ fn text(d: &OrbitDiagram) -> String {
     );
     for (u, w) in d.up.iter().zip(d.down.iter().rev()) {
         let (a, b) = (describe(u), describe(w));
-        let mark = if a == b { "" } else { "  *" };
+        let mark = if shape(u) == shape(w) { "" } else { "  *" };
         s.push_str(&format!("{:>14.8}  {a:<44}  {b}{mark}\n", u.value));
     }
     if !d.branches.is_empty() {
@@ -158,6 +163,6 @@ fn text(d: &OrbitDiagram) -> String {
             ));
         }
     }
-    s.push_str("\n(* : the two directions differ there)\n");
+    s.push_str("\n(*: the two directions show different shapes there: hysteresis)\n");
     s
 }

@@ -13,7 +13,7 @@ use super::legend::{Entry, Legend, LegendLayout, Mark};
 use super::palette::category;
 use super::sweep::{STABLE_WIDTH, UNSTABLE_WIDTH};
 use super::{save, DrawError, Figure, FAMILY, REFERENCE_GREY, TITLE_SIZE};
-use crate::study::diagram::{Column, OrbitDiagram};
+use crate::study::diagram::{BranchSection, Column, OrbitDiagram};
 
 const WIDTH: u32 = 1500;
 /// The height of the image unless the legend needs more.
@@ -43,6 +43,26 @@ fn branch_colour(k: usize) -> RGBColor {
     category(if k < 2 { k + 1 } else { k + BRANCH_RANK - 2 })
 }
 
+fn branch_name(b: &BranchSection) -> String {
+    if b.n > 1 {
+        format!("{}^{}", b.structure, b.n)
+    } else {
+        b.structure.clone()
+    }
+}
+
+/// The distinct branch names, in order of first appearance.
+fn names(d: &OrbitDiagram) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for b in &d.branches {
+        let n = branch_name(b);
+        if !out.contains(&n) {
+            out.push(n);
+        }
+    }
+    out
+}
+
 impl<'a> DiagramFigure<'a> {
     /// The figure of `diagram`, titled `title`.
     pub fn new(diagram: &'a OrbitDiagram, title: &str) -> Self {
@@ -56,15 +76,14 @@ impl<'a> DiagramFigure<'a> {
                 format!("simulation, {} decreasing", diagram.param),
             ),
         ];
-        for (k, b) in diagram.branches.iter().enumerate() {
+        // One colour and one entry per structure (a sweep may give one
+        // structure in several branches).
+        let names = names(diagram);
+        for (k, name) in names.iter().enumerate() {
             let c = branch_colour(k);
-            let name = if b.n > 1 {
-                format!("{}^{}", b.structure, b.n)
-            } else {
-                b.structure.clone()
-            };
+            let of_name = || diagram.branches.iter().filter(|b| &branch_name(b) == name);
             entries.push(Entry::new(Mark::Line(c), format!("{name} (stable)")));
-            if b.points.iter().any(|p| !p.stable) {
+            if of_name().any(|b| b.points.iter().any(|p| !p.stable)) {
                 entries.push(Entry::new(Mark::Dashed(c), format!("{name} (unstable)")));
             }
         }
@@ -142,7 +161,9 @@ impl Figure for DiagramFigure<'_> {
                         .map(move |y| Circle::new((c.value, y), 1, colour.mix(0.7).filled()))
                 }))?;
             }
-            for (k, b) in d.branches.iter().enumerate() {
+            let names = names(d);
+            for b in &d.branches {
+                let k = names.iter().position(|n| *n == branch_name(b)).unwrap_or(0);
                 let c = branch_colour(k);
                 for strand in 0..b.n as usize {
                     // Runs of equal stability, one polyline each.
