@@ -151,7 +151,7 @@ fn the_three_stable_motions_of_the_window_each_have_a_basin() {
     let label = |i: usize| file.starts[i].attractor.as_str();
     for (name, states) in &motions {
         let inner = (0..grid)
-            .filter(|&i| {
+            .find(|&i| {
                 let (ix, iv) = (i % nx, i / nx);
                 ix > 0
                     && iv > 0
@@ -161,7 +161,6 @@ fn the_three_stable_motions_of_the_window_each_have_a_basin() {
                         .iter()
                         .all(|&j| label(j) == name)
             })
-            .nth(0)
             .unwrap_or_else(|| panic!("no inner start of {name}"));
         let s = &file.starts[inner];
         let (xe, ve) = reference_end(s.x, s.v, 400);

@@ -152,44 +152,57 @@ pub struct Basins {
     pub elapsed: Duration,
 }
 
+/// One attractor's starts while summarizing: grid points, samples, the sum
+/// and count of finite exponents, and its first start.
+#[derive(Clone, Copy)]
+struct Tally {
+    points: usize,
+    samples: usize,
+    sum: f64,
+    with: usize,
+    example: (f64, f64),
+}
+
 /// The attractors of the starts of `file` and their basins.
 pub fn summarize(header: &BasinHeader, starts: &[StartResult]) -> Vec<AttractorBasin> {
     let grid = header.grid_len();
-    let mut by: BTreeMap<&str, (usize, usize, f64, usize, (f64, f64), usize)> = BTreeMap::new();
+    let mut by: BTreeMap<&str, Tally> = BTreeMap::new();
     let mut sorted: Vec<&StartResult> = starts.iter().collect();
     sorted.sort_by_key(|s| s.index);
     let (mut on_grid, mut sampled) = (0, 0);
     for s in sorted {
-        let e = by
-            .entry(&s.attractor)
-            .or_insert((0, 0, 0.0, 0, (s.x, s.v), s.index));
+        let e = by.entry(&s.attractor).or_insert(Tally {
+            points: 0,
+            samples: 0,
+            sum: 0.0,
+            with: 0,
+            example: (s.x, s.v),
+        });
         if s.index < grid {
-            e.0 += 1;
+            e.points += 1;
             on_grid += 1;
         } else {
-            e.1 += 1;
+            e.samples += 1;
             sampled += 1;
         }
         if let Some(x) = s.exponent.filter(|x| x.is_finite()) {
-            e.2 += x;
-            e.3 += 1;
+            e.sum += x;
+            e.with += 1;
         }
     }
     let share = |k: usize, n: usize| if n == 0 { 0.0 } else { k as f64 / n as f64 };
     let mut out: Vec<AttractorBasin> = by
         .into_iter()
-        .map(
-            |(name, (points, samples, sum, with, example, _))| AttractorBasin {
-                name: name.to_string(),
-                points,
-                fraction: share(points, on_grid),
-                samples,
-                stability: share(samples, sampled),
-                interval: wilson(samples, sampled, Z95),
-                exponent: (with > 0).then(|| sum / with as f64),
-                example,
-            },
-        )
+        .map(|(name, t)| AttractorBasin {
+            name: name.to_string(),
+            points: t.points,
+            fraction: share(t.points, on_grid),
+            samples: t.samples,
+            stability: share(t.samples, sampled),
+            interval: wilson(t.samples, sampled, Z95),
+            exponent: (t.with > 0).then(|| t.sum / t.with as f64),
+            example: t.example,
+        })
         .collect();
     out.sort_by(|a, b| {
         b.points
