@@ -100,9 +100,12 @@ mod tests {
         let [lo, hi] = wilson(0, 10, Z95);
         assert_eq!(lo, 0.0);
         assert!((hi - Z95 * Z95 / (10.0 + Z95 * Z95)).abs() < 1e-15);
-        // Symmetric around 1/2 for n/2 hits, and near the normal interval for large n.
+        // n/2 hits: centred on 1/2 with half-width z / (2 sqrt(n + z²)),
+        // within 2e-5 of the normal interval's z sqrt(1/4n) at n = 10⁴.
         let [lo, hi] = wilson(5000, 10_000, Z95);
         assert!((lo + hi - 1.0).abs() < 1e-12);
-        assert!((hi - 0.5 - Z95 * 0.005).abs() < 1e-6);
+        let half = Z95 / (2.0 * (10_000.0 + Z95 * Z95).sqrt());
+        assert!((hi - 0.5 - half).abs() < 1e-14);
+        assert!((hi - 0.5 - Z95 * 0.005).abs() < 2e-5);
     }
 }
