@@ -7,7 +7,9 @@ use std::path::PathBuf;
 
 use stickslip::orbit::motion::OrbitError;
 use stickslip::orbit::structure::StructureError;
+use stickslip::study::basins::BasinsError;
 use stickslip::study::curves::CurvesError;
+use stickslip::study::diagram::DiagramError;
 use stickslip::study::map::{AxisError, MapError};
 use stickslip::study::sweep::SweepError;
 use stickslip::study::trade::TradeError;
@@ -178,6 +180,12 @@ pub enum CliError {
     /// The trade could not be measured.
     #[error(transparent)]
     Trade(#[from] TradeError),
+    /// The basin run failed.
+    #[error(transparent)]
+    Basins(#[from] BasinsError),
+    /// The orbit diagram could not run.
+    #[error(transparent)]
+    Diagram(#[from] DiagramError),
     /// Serializing the JSON output failed.
     #[error(transparent)]
     Json(#[from] serde_json::Error),

@@ -2,9 +2,11 @@
 //! and what it does), the arguments they share, their errors and output.
 
 mod args;
+mod basins;
 mod check;
 mod curves;
 mod describe;
+mod diagram;
 mod error;
 mod lyapunov;
 mod map;
@@ -69,6 +71,14 @@ enum Command {
     /// Join the outputs of `map --shard k/n` into one map (and figure),
     /// identical to a single run.
     Merge(merge::MergeArgs),
+    /// Which attractor each start (x, v) at a forcing phase reaches: basin
+    /// fractions of a grid and basin stability from random starts, with
+    /// confidence intervals; all cores, resumable.
+    Basins(basins::BasinsArgs),
+    /// The brute-force bifurcation diagram: stroboscopic samples after a
+    /// transient at each parameter value, swept up and down (hysteresis),
+    /// with the largest Lyapunov exponent and the sweep's branches.
+    OrbitDiagram(diagram::DiagramArgs),
 }
 
 impl Cli {
@@ -88,6 +98,8 @@ impl Cli {
             Command::Curves(args) => curves::run(args)?,
             Command::Merge(args) => merge::run(args)?,
             Command::Lyapunov(args) => lyapunov::run(args)?,
+            Command::Basins(args) => basins::run(args)?,
+            Command::OrbitDiagram(args) => diagram::run(args)?,
         };
         Ok(outcome.print())
     }

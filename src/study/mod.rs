@@ -3,11 +3,15 @@
 //! * [`sweep`] — one-parameter continuation with located transitions;
 //! * [`search`] — every coexisting stable motion, from many starts;
 //! * [`map`] — two-parameter maps of what lives where, parallel and resumable;
+//! * [`basins`] — basins of attraction and basin stability, parallel and resumable;
+//! * [`diagram`] — the brute-force orbit diagram, swept up and down, with exponents and branches;
 //! * [`trade`] — the speed/accuracy trade of a smooth law's N-piece models.
 //!
 //! Continuation, two-parameter curves, chaos and basins belong here too.
 
+pub mod basins;
 pub mod curves;
+pub mod diagram;
 pub mod map;
 pub mod search;
 pub mod sweep;

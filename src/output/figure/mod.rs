@@ -12,10 +12,14 @@
 //! * [`map`] — a parameter map (Fig. 11), optionally with exact curves over it;
 //! * [`regime`] — a regime map from curves alone: regions filled and
 //!   numbered, curves by kind, codimension-two points marked;
+//! * [`basins`] — basins of attraction over the starts `(x, v)`;
+//! * [`diagram`] — an orbit diagram: stroboscopic samples swept up and down, exponents, branches;
 //! * [`trade`] — error against computing time.
 
 pub mod backend;
+pub mod basins;
 pub mod branch;
+pub mod diagram;
 pub mod layout;
 pub mod legend;
 pub mod map;
