@@ -143,3 +143,41 @@ fn map_names_chaos_instead_of_unsettled() {
     assert_eq!(files[0], files[2], "a map is deterministic");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A continuation map over a chaotic window: a cell next to a chaotic one
+/// has no motion to continue, so it must simulate its own starts and say
+/// what it found. The default method used to write `"ok"` with no motions
+/// at every such point (a silent wrong answer); every point must now be a
+/// motion, NM, or a status that names what the starts did.
+#[test]
+fn a_continuation_map_of_a_chaotic_window_says_what_every_point_is() {
+    let dir = std::env::temp_dir().join(format!("lyapunov_cli_window_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let out = dir.join("window.csv");
+    let (ok, _, err) = stickslip(&[
+        "map",
+        "--model",
+        "stribeck8",
+        "--x",
+        "W=2.34:2.46:4",
+        "--y",
+        "Q0=2.8:3.2:2",
+        "--out",
+        out.to_str().expect("utf-8 path"),
+    ]);
+    assert!(ok, "{err}");
+    let text = std::fs::read_to_string(&out).expect("map file");
+    let points: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with(['#', 'i']))
+        .collect();
+    assert_eq!(points.len(), 8, "{text}");
+    for line in points {
+        assert!(
+            !line.ends_with(",\"ok\",\"\""),
+            "a point with nothing found: {line}"
+        );
+        assert!(line.contains("chaotic"), "{line}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

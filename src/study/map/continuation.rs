@@ -484,12 +484,18 @@ fn neighbours(i: usize, w: usize, n: usize) -> impl Iterator<Item = usize> {
     [left, below, right, above].into_iter().flatten()
 }
 
-/// Whether cell `i` must simulate its starts: a seed, a motion close to a
-/// transition, or a set that differs from a neighbour's.
+/// Whether cell `i` must simulate its starts: nothing known there, a seed,
+/// a motion close to a transition, or a set that differs from a neighbour's.
 fn needs_check<M: Model>(cells: &[Cell<M>], i: usize, w: usize, only_done: bool) -> bool {
     let c = &cells[i];
     if c.checked || c.sim.is_none() {
         return false;
+    }
+    // Nothing continued into the cell: nothing is known there (a chaotic
+    // or unsettled neighbour has no motion to continue), and only its
+    // starts can say what lives there.
+    if c.motions.is_empty() && c.others.is_empty() {
+        return true;
     }
     let (cx, cy) = (i % w, i / w);
     if (cx % SEED_SPACING == 0 && cy % SEED_SPACING == 0) || c.motions.iter().any(|f| !f.clear) {
