@@ -5,14 +5,14 @@
 //! * [`map`] — two-parameter maps of what lives where, parallel and resumable;
 //! * [`basins`] — basins of attraction and basin stability, parallel and resumable;
 //! * [`diagram`] — the brute-force orbit diagram, swept up and down, with exponents and branches;
-//! * [`trade`] — the speed/accuracy trade of a smooth law's N-piece models.
-//!
-//! Continuation, two-parameter curves, chaos and basins belong here too.
+//! * [`trade`] — the speed/accuracy trade of a smooth law's N-piece models;
+//! * `record` — the resumable record file that `map` and `basins` keep.
 
 pub mod basins;
 pub mod curves;
 pub mod diagram;
 pub mod map;
+pub(crate) mod record;
 pub mod search;
 pub mod sweep;
 pub mod trade;

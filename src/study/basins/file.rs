@@ -3,13 +3,13 @@
 //! whole file ([`BasinFile`]); written in canonical order atomically (a
 //! temporary file beside it, synced, renamed over it), as the map's files are.
 
-use std::fs::{self, File};
-use std::io::Write;
+use std::fs;
 use std::path::Path;
 
 use crate::model::param::ParamSet;
 use crate::model::Model;
 use crate::study::map::GridAxis;
+use crate::study::record::{complete_lines, write_atomic};
 
 use super::error::{io_err, BasinsError};
 use super::sample::random_start;
@@ -291,16 +291,12 @@ impl BasinFile {
     /// Parse `bytes` (the contents of `path`); `None` when not even the
     /// header line is complete.
     pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Option<Self>, BasinsError> {
-        let end = bytes.iter().rposition(|&b| b == b'\n').map_or(0, |e| e + 1);
-        let complete = std::str::from_utf8(&bytes[..end]).map_err(|e| BasinsError::Corrupt {
+        let complete = complete_lines(bytes).map_err(|line| BasinsError::Corrupt {
             path: path.to_path_buf(),
-            line: 1 + bytes[..e.valid_up_to()]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count(),
+            line,
             reason: "not UTF-8 text".to_string(),
         })?;
-        let mut lines = complete.split_inclusive('\n').enumerate();
+        let mut lines = complete.lines.iter().copied().enumerate();
         let Some((_, first)) = lines.next() else {
             return Ok(None);
         };
@@ -325,7 +321,7 @@ impl BasinFile {
         Ok(Some(Self {
             header,
             starts,
-            valid_len: end as u64,
+            valid_len: complete.valid_len,
         }))
     }
 }
@@ -342,16 +338,7 @@ pub(super) fn write_canonical(
     for p in sorted {
         text.push_str(&p.to_line());
     }
-    let name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "basins".to_string());
-    let tmp = out.with_file_name(format!(".{name}.tmp"));
-    let mut f = File::create(&tmp).map_err(io_err(&tmp))?;
-    f.write_all(text.as_bytes()).map_err(io_err(&tmp))?;
-    f.sync_all().map_err(io_err(&tmp))?;
-    drop(f);
-    fs::rename(&tmp, out).map_err(io_err(out))
+    write_atomic(out, "basins", &text).map_err(|(path, source)| BasinsError::Io { path, source })
 }
 
 #[cfg(test)]

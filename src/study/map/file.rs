@@ -4,12 +4,12 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::fs::{self, File};
-use std::io::Write;
+use std::fs;
 use std::path::Path;
 
 use crate::model::param::ParamSet;
 use crate::model::Model;
+use crate::study::record::{complete_lines, write_atomic};
 
 use super::error::{io_err, MapError};
 use super::grid::{GridAxis, Shard};
@@ -357,22 +357,12 @@ impl MapFile {
     /// header line is complete. A partial last line may end inside a
     /// character: only complete lines must be UTF-8.
     pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Option<Self>, MapError> {
-        let (complete, dropped_partial) = match bytes.iter().rposition(|&b| b == b'\n') {
-            Some(end) => (&bytes[..=end], end + 1 < bytes.len()),
-            None => (&bytes[..0], !bytes.is_empty()),
-        };
-        let complete = std::str::from_utf8(complete).map_err(|e| {
-            let line = 1 + complete[..e.valid_up_to()]
-                .iter()
-                .filter(|&&b| b == b'\n')
-                .count();
-            MapError::Corrupt {
-                path: path.to_path_buf(),
-                line,
-                reason: "not UTF-8 text".to_string(),
-            }
+        let complete = complete_lines(bytes).map_err(|line| MapError::Corrupt {
+            path: path.to_path_buf(),
+            line,
+            reason: "not UTF-8 text".to_string(),
         })?;
-        let mut lines = complete.split_inclusive('\n').enumerate();
+        let mut lines = complete.lines.iter().copied().enumerate();
         let Some((_, first)) = lines.next() else {
             return Ok(None);
         };
@@ -398,8 +388,8 @@ impl MapFile {
         Ok(Some(Self {
             header,
             points,
-            valid_len: complete.len() as u64,
-            dropped_partial,
+            valid_len: complete.valid_len,
+            dropped_partial: complete.dropped_partial,
         }))
     }
 }
@@ -417,17 +407,7 @@ pub(super) fn write_canonical(
     for p in sorted {
         text.push_str(&p.to_line());
     }
-    let name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "map".to_string());
-    let tmp = out.with_file_name(format!(".{name}.tmp"));
-    let mut f = File::create(&tmp).map_err(io_err(&tmp))?;
-    f.write_all(text.as_bytes()).map_err(io_err(&tmp))?;
-    f.sync_all().map_err(io_err(&tmp))?;
-    drop(f);
-    fs::rename(&tmp, out).map_err(io_err(out))?;
-    Ok(())
+    write_atomic(out, "map", &text).map_err(|(path, source)| MapError::Io { path, source })
 }
 
 /// Merge records into `by_index`; identical duplicates are kept once, different ones collected.
