@@ -8,3 +8,20 @@
 pub use crate::model::registry::{Entry, ModelVisitor};
 
 include!(concat!(env!("OUT_DIR"), "/models.rs"));
+
+/// The names of the compiled-in piecewise-linear models and scenes (what
+/// every analysis takes), in file order.
+pub fn piecewise_names() -> Vec<&'static str> {
+    ALL.iter()
+        .filter_map(Entry::piecewise)
+        .map(|i| i.name)
+        .collect()
+}
+
+/// A name that is no compiled-in piecewise-linear model or scene.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown model `{name}`; compiled-in: {}", piecewise_names().join(", "))]
+pub struct UnknownModel {
+    /// The name given.
+    pub name: String,
+}

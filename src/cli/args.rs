@@ -157,9 +157,9 @@ impl<C: WithModel> ModelVisitor for Piecewise<C> {
 /// Run `command` with the compiled-in model `name` (`paper`, or `model::scene`).
 pub fn with_model<C: WithModel>(name: &str, command: C) -> Result<C::Output, CliError> {
     models::visit(name, Piecewise(command)).unwrap_or_else(|| {
-        Err(CliError::UnknownModel {
+        Err(CliError::UnknownModel(models::UnknownModel {
             name: name.to_string(),
-        })
+        }))
     })
 }
 

@@ -19,11 +19,8 @@ use stickslip::{dynamics::simulate::SimError, models, ParamError};
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// `--model` names no compiled-in model.
-    #[error("unknown model `{name}`; compiled-in: {}", names(models::ALL.iter().filter_map(models::Entry::piecewise).map(|i| i.name)))]
-    UnknownModel {
-        /// The name given.
-        name: String,
-    },
+    #[error(transparent)]
+    UnknownModel(#[from] models::UnknownModel),
     /// `trade --model` names no compiled-in model with a smooth law.
     #[error(
         "`{name}` is not a model with a smooth law; compiled-in: {}",

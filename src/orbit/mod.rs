@@ -18,6 +18,7 @@ pub mod admissible;
 pub mod attractor;
 pub mod extrema;
 pub mod family;
+pub mod guess;
 pub mod known;
 pub mod lyapunov;
 pub mod motion;

@@ -19,5 +19,6 @@ pub mod history;
 pub mod lyapunov_report;
 pub mod map_summary;
 pub mod report;
+pub mod settled;
 pub mod sweep_table;
 pub mod text;

@@ -388,6 +388,25 @@ pub fn sweep<M: Model>(
     sweep_branches::<M>(base, name, from, to, count, opts).map(|(sweep, _)| sweep)
 }
 
+/// Sweep parameter `name` over the given grid `values` (at least two,
+/// finite, strictly increasing; not necessarily evenly spaced): the branches
+/// are followed over `[first, last]` and read off at every value.
+pub fn sweep_values<M: Model>(
+    base: M::Params,
+    name: &str,
+    values: &[f64],
+    opts: SweepOptions,
+) -> Result<Sweep, SweepError> {
+    let increasing = values.windows(2).all(|w| w[0] < w[1]);
+    if values.len() < 2 || !increasing || values.iter().any(|v| !v.is_finite()) {
+        return Err(SweepError::Range(format!(
+            "{name}: {} values: need at least 2, finite and strictly increasing",
+            values.len()
+        )));
+    }
+    sweep_grid::<M>(base, name, values.to_vec(), opts).map(|(sweep, _)| sweep)
+}
+
 /// [`sweep`], with the branches it followed as continuation gave them
 /// (structures, switching points at their ends and bifurcations; indexed
 /// like [`Sweep::branches`]): the curves run starts from them.
@@ -399,7 +418,7 @@ pub(crate) fn sweep_branches<M: Model>(
     count: usize,
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
-    let index = <M::Params as ParamSet>::index_of(name)
+    <M::Params as ParamSet>::index_of(name)
         .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
     if count < 2 || !from.is_finite() || !to.is_finite() || from >= to {
         return Err(SweepError::Range(format!(
@@ -409,6 +428,19 @@ pub(crate) fn sweep_branches<M: Model>(
     let values: Vec<f64> = (0..count)
         .map(|i| from + (to - from) * i as f64 / (count - 1) as f64)
         .collect();
+    sweep_grid::<M>(base, name, values, opts)
+}
+
+/// The sweep over `values` (checked by the callers: increasing, finite).
+fn sweep_grid<M: Model>(
+    base: M::Params,
+    name: &str,
+    values: Vec<f64>,
+    opts: SweepOptions,
+) -> Result<(Sweep, Vec<Branch>), SweepError> {
+    let index = <M::Params as ParamSet>::index_of(name)
+        .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
+    let (from, to) = (values[0], values[values.len() - 1]);
     // The parameters must be valid at both ends (the error says which).
     with(&base, index, from)?;
     with(&base, index, to)?;

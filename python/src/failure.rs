@@ -1,0 +1,124 @@
+//! What can go wrong, as the Python exception that says it: the library's
+//! typed errors keep their messages (the CLI's, without `error: `), and each
+//! kind of mistake has its class in `stickslip.errors`.
+
+use pyo3::prelude::*;
+use stickslip::dynamics::simulate::SimError;
+use stickslip::models::UnknownModel;
+use stickslip::orbit::motion::OrbitError;
+use stickslip::study::sweep::SweepError;
+use stickslip::ParamError;
+
+/// Which exception of `stickslip.errors` a failure raises.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// `ModelError`: no such model, or a model file that does not check.
+    Model,
+    /// `ParamError`: a parameter the model rejects.
+    Param,
+    /// `StructureError`: a structure that is not one of the model.
+    Structure,
+    /// `NewtonError`: Newton did not converge.
+    Newton,
+    /// `SeedError`: no start for Newton (no simulated motion follows the structure).
+    Seed,
+    /// `SimulationError`: the simulation could not go on.
+    Simulation,
+    /// `InputError`: another bad argument (a range, a count, a file).
+    Input,
+}
+
+impl Kind {
+    fn class(self) -> &'static str {
+        match self {
+            Kind::Model => "ModelError",
+            Kind::Param => "ParamError",
+            Kind::Structure => "StructureError",
+            Kind::Newton => "NewtonError",
+            Kind::Seed => "SeedError",
+            Kind::Simulation => "SimulationError",
+            Kind::Input => "InputError",
+        }
+    }
+}
+
+/// A failure on its way to Python.
+#[derive(Debug)]
+pub struct Failure {
+    /// Its class.
+    pub kind: Kind,
+    /// Its message.
+    pub message: String,
+}
+
+impl Failure {
+    /// A failure of `kind` saying `message`.
+    pub fn new(kind: Kind, message: impl ToString) -> Self {
+        Self {
+            kind,
+            message: message.to_string(),
+        }
+    }
+}
+
+impl From<UnknownModel> for Failure {
+    fn from(e: UnknownModel) -> Self {
+        Self::new(Kind::Model, e)
+    }
+}
+
+impl From<ParamError> for Failure {
+    fn from(e: ParamError) -> Self {
+        Self::new(Kind::Param, e)
+    }
+}
+
+impl From<SimError> for Failure {
+    fn from(e: SimError) -> Self {
+        Self::new(Kind::Simulation, e)
+    }
+}
+
+impl From<OrbitError> for Failure {
+    fn from(e: OrbitError) -> Self {
+        let kind = match &e {
+            OrbitError::Structure(_) => Kind::Structure,
+            OrbitError::Simulation(_) => Kind::Simulation,
+            OrbitError::NotConverged(_) => Kind::Newton,
+            _ => Kind::Input,
+        };
+        Self::new(kind, e)
+    }
+}
+
+impl From<SweepError> for Failure {
+    fn from(e: SweepError) -> Self {
+        match e {
+            SweepError::Orbit(e) => e.into(),
+            SweepError::Params(_) | SweepError::UnknownParam(_) => Self::new(Kind::Param, e),
+            SweepError::Range(_) => Self::new(Kind::Input, e),
+        }
+    }
+}
+
+impl From<serde_json::Error> for Failure {
+    fn from(e: serde_json::Error) -> Self {
+        Self::new(Kind::Input, e)
+    }
+}
+
+impl From<Failure> for PyErr {
+    fn from(f: Failure) -> PyErr {
+        Python::attach(|py| {
+            let raised = py
+                .import("stickslip.errors")
+                .and_then(|errors| errors.getattr(f.kind.class()))
+                .and_then(|class| class.call1((f.message.clone(),)));
+            match raised {
+                Ok(exception) => PyErr::from_value(exception),
+                // The package is broken (errors.py missing): still no panic.
+                Err(e) => e,
+            }
+        })
+    }
+}

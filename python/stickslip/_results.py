@@ -1,0 +1,204 @@
+"""Result objects: the CLI's JSON (``to_dict()``), with numpy arrays for the
+numbers a notebook plots, and ``to_pandas()`` for the tabular ones."""
+
+from __future__ import annotations
+
+import copy
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+
+def _pandas() -> Any:
+    try:
+        import pandas  # type: ignore[import-not-found]
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_pandas() needs pandas: pip install pandas") from e
+    return pandas
+
+
+def _complex(pairs: Optional[List[List[float]]]) -> np.ndarray:
+    """``[[re, im], ...]`` as a complex array (empty for ``None``)."""
+    if not pairs:
+        return np.zeros(0, dtype=complex)
+    a = np.asarray(pairs, dtype=float)
+    return a[:, 0] + 1j * a[:, 1]
+
+
+class Result:
+    """A result: its JSON as the CLI prints it with ``--json``."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The result as the CLI's ``--json`` gives it (a deep copy)."""
+        return copy.deepcopy(self._data)
+
+    def __getitem__(self, key: str) -> Any:
+        return self._data[key]
+
+
+class History(Result):
+    """A motion in time: numpy arrays ``t, Wt, x, v, a, F, domain`` (one
+    sample per row; at a switching instant the segment ending there and the
+    one starting there each give a sample). ``domain`` 0 is stick; ``F`` is
+    the friction force."""
+
+    COLUMNS = ("t", "Wt", "x", "v", "a", "F", "domain")
+
+    def __init__(self, columns: tuple) -> None:
+        t, wt, x, v, a, f, domain = columns
+        self.t = np.asarray(t, dtype=float)
+        self.Wt = np.asarray(wt, dtype=float)
+        self.x = np.asarray(x, dtype=float)
+        self.v = np.asarray(v, dtype=float)
+        self.a = np.asarray(a, dtype=float)
+        self.F = np.asarray(f, dtype=float)
+        self.domain = np.asarray(domain, dtype=np.int64)
+        super().__init__({c: getattr(self, c).tolist() for c in self.COLUMNS})
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def to_pandas(self) -> Any:
+        """A DataFrame with one column per array."""
+        return _pandas().DataFrame({c: getattr(self, c) for c in self.COLUMNS})
+
+    def __repr__(self) -> str:
+        return f"History({len(self)} samples, t = {self.t[0]:.6g} .. {self.t[-1]:.6g})"
+
+
+class Motion(Result):
+    """What ``simulate`` or ``orbit`` found.
+
+    ``kind`` is ``periodic``, ``neutral_family``, ``NM`` (no boundary
+    contact), ``stick`` (permanent), ``autonomous_cycle``, or, carried by an
+    exception, ``inadmissible`` or ``not_converged``. For a periodic motion:
+    ``structure`` (``P_{...}``), ``N`` (forcing periods per cycle),
+    ``points`` (an ``m × 3`` array of switching points ``Wt, x, v``, with
+    ``boundaries`` and ``mappings`` naming each), ``eigenvalues`` (complex),
+    ``stable`` and ``admissible``.
+    """
+
+    def __init__(self, data: Dict[str, Any], trajectory: Any, notes: List[str]) -> None:
+        super().__init__(data)
+        self._trajectory = trajectory
+        self.notes = list(notes)
+        self.kind: str = data["kind"]
+        self.structure: Optional[str] = data.get("structure")
+        self.N: Optional[int] = data.get("N")
+        points = data.get("points") or []
+        self.points = np.array([[p["Wt"], p["x"], p["v"]] for p in points], dtype=float).reshape(
+            len(points), 3
+        )
+        self.boundaries: List[str] = [p["boundary"] for p in points]
+        self.mappings: List[str] = [p["mapping"] for p in points]
+        self.eigenvalues = _complex(data.get("eigenvalues"))
+        self.stable: Optional[bool] = data.get("stable")
+        self.admissible: Optional[bool] = data.get("admissible")
+        self.violations: List[Dict[str, Any]] = data.get("violations", [])
+        self.params: Dict[str, float] = data.get("params", {})
+
+    @property
+    def title(self) -> str:
+        """The figure title the CLI gives this result."""
+        return str(self._trajectory.title())
+
+    def history(self, periods: int = 1, samples: int = 400) -> History:
+        """``periods`` cycles of the motion (a periodic motion repeats its
+        exact cycle; NM, stick and an autonomous cycle are simulated over a
+        window ``periods`` times longer), ``samples`` per forcing period."""
+        columns = self._trajectory.history(periods, samples)
+        if columns is None:
+            from .errors import InputError
+
+            raise InputError("there is no motion")
+        return History(columns)
+
+    def to_pandas(self) -> Any:
+        """The switching points as a DataFrame: ``k, Wt, x, v, boundary, mapping``."""
+        return _pandas().DataFrame(
+            {
+                "k": np.arange(len(self.points)),
+                "Wt": self.points[:, 0],
+                "x": self.points[:, 1],
+                "v": self.points[:, 2],
+                "boundary": self.boundaries,
+                "mapping": self.mappings,
+            }
+        )
+
+    def __repr__(self) -> str:
+        if self.structure is not None:
+            return f"Motion({self.kind}, {self.structure}, N = {self.N}, stable = {self.stable})"
+        return f"Motion({self.kind})"
+
+
+class Description(Result):
+    """``describe``: domains, boundaries and mappings at the parameters;
+    ``str()`` is the CLI's table."""
+
+    def __init__(self, text: str, data: Dict[str, Any]) -> None:
+        super().__init__(data)
+        self._text = text
+
+    def __str__(self) -> str:
+        return self._text
+
+    def _repr_pretty_(self, p: Any, cycle: bool) -> None:  # IPython
+        p.text(self._text)
+
+
+class Sweep(Result):
+    """A sweep of one parameter (``stickslip sweep --json``): ``param``, the
+    grid ``values``, ``points`` (the motions at each value), ``branches``
+    (followed by arclength continuation, unstable parts kept), ``transitions``
+    and ``bifurcations``, each a list of dicts as in the CLI's JSON."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        super().__init__(data)
+        self.param: str = data["param"]
+        self.points: List[Dict[str, Any]] = data["points"]
+        self.values = np.array([p[self.param] for p in self.points], dtype=float)
+        self.branches: List[Dict[str, Any]] = data["branches"]
+        self.transitions: List[Dict[str, Any]] = data["transitions"]
+        self.bifurcations: List[Dict[str, Any]] = data["bifurcations"]
+
+    def branch_arrays(self, branch: int) -> Dict[str, np.ndarray]:
+        """Branch ``branch``'s points as arrays: the parameter, ``start_Wt``,
+        ``start_x``, ``eigenvalues`` (``n × 2`` complex), ``stable``."""
+        pts = self.branches[branch]["points"]
+        return {
+            self.param: np.array([p[self.param] for p in pts], dtype=float),
+            "start_Wt": np.array([p["start_Wt"] for p in pts], dtype=float),
+            "start_x": np.array([p["start_x"] for p in pts], dtype=float),
+            "eigenvalues": np.array([_complex(p["eigenvalues"]) for p in pts]).reshape(len(pts), -1),
+            "stable": np.array([p["stable"] for p in pts], dtype=bool),
+        }
+
+    def to_pandas(self) -> Any:
+        """One row per motion at each grid value: the parameter,
+        ``structure``, ``N``, ``start_Wt``, ``start_x``, ``stable``, ``|λ|max``."""
+        rows = []
+        for p in self.points:
+            for m in p["motions"]:
+                lam = _complex(m.get("eigenvalues"))
+                rows.append(
+                    {
+                        self.param: p[self.param],
+                        "structure": m.get("structure"),
+                        "N": m.get("N"),
+                        "start_Wt": m.get("start_Wt"),
+                        "start_x": m.get("start_x"),
+                        "stable": m.get("stable"),
+                        "lambda_max": float(np.abs(lam).max()) if lam.size else np.nan,
+                    }
+                )
+        return _pandas().DataFrame(rows)
+
+    def __repr__(self) -> str:
+        return (
+            f"Sweep({self.param}: {len(self.points)} values, {len(self.branches)} branches, "
+            f"{len(self.transitions)} transitions, {len(self.bifurcations)} bifurcations)"
+        )
