@@ -6,6 +6,10 @@ use pyo3::prelude::*;
 use stickslip::dynamics::simulate::SimError;
 use stickslip::models::UnknownModel;
 use stickslip::orbit::motion::OrbitError;
+use stickslip::orbit::lyapunov::LyapunovError;
+use stickslip::study::basins::BasinsError;
+use stickslip::study::curves::CurvesError;
+use stickslip::study::map::{AxisError, MapError};
 use stickslip::study::sweep::SweepError;
 use stickslip::ParamError;
 
@@ -97,6 +101,71 @@ impl From<SweepError> for Failure {
             SweepError::Orbit(e) => e.into(),
             SweepError::Params(_) | SweepError::UnknownParam(_) => Self::new(Kind::Param, e),
             SweepError::Range(_) => Self::new(Kind::Input, e),
+        }
+    }
+}
+
+impl From<AxisError> for Failure {
+    fn from(e: AxisError) -> Self {
+        let kind = match e {
+            AxisError::Parameter { .. } => Kind::Param,
+            _ => Kind::Input,
+        };
+        Self::new(kind, e)
+    }
+}
+
+/// An output file that exists, without `resume=True`: the CLI's message
+/// names its option, this one the keyword.
+fn output_exists(path: &std::path::Path) -> Failure {
+    Failure::new(
+        Kind::Input,
+        format!(
+            "`{}` already exists: use resume=True to continue that run, or remove the file",
+            path.display()
+        ),
+    )
+}
+
+impl From<MapError> for Failure {
+    fn from(e: MapError) -> Self {
+        match e {
+            MapError::Axis(e) => e.into(),
+            MapError::OutputExists(path) => output_exists(&path),
+            _ => Self::new(Kind::Input, e),
+        }
+    }
+}
+
+impl From<BasinsError> for Failure {
+    fn from(e: BasinsError) -> Self {
+        match e {
+            BasinsError::Axis(e) => e.into(),
+            BasinsError::Params(e) => e.into(),
+            BasinsError::Sim(e) => e.into(),
+            BasinsError::OutputExists(path) => output_exists(&path),
+            _ => Self::new(Kind::Input, e),
+        }
+    }
+}
+
+impl From<CurvesError> for Failure {
+    fn from(e: CurvesError) -> Self {
+        let kind = match &e {
+            CurvesError::UnknownParam { .. } | CurvesError::Corner { .. } => Kind::Param,
+            // The sweep's failure, with the message saying where it happened.
+            CurvesError::Sweep(inner) => Failure::from(inner.clone()).kind,
+            _ => Kind::Input,
+        };
+        Self::new(kind, e)
+    }
+}
+
+impl From<LyapunovError> for Failure {
+    fn from(e: LyapunovError) -> Self {
+        match e {
+            LyapunovError::Sim(e) => e.into(),
+            LyapunovError::NoPeriods => Self::new(Kind::Input, e),
         }
     }
 }

@@ -10,8 +10,8 @@ use pyo3::prelude::*;
 
 /// Run `work` (given a counter of the units it has done) with the GIL
 /// released; with `show`, a bar of `total` units named `what` follows the
-/// counter every 0.1 s.
-#[expect(dead_code, reason = "map and basins use it next")]
+/// counter every 0.1 s (from the first 0.1 s on: a call that ends or fails
+/// sooner draws none).
 pub fn with_progress<T: Send>(
     py: Python<'_>,
     show: bool,
@@ -23,10 +23,7 @@ pub fn with_progress<T: Send>(
     if !show {
         return Ok(py.detach(|| work(&done)));
     }
-    let bar = py
-        .import("stickslip._progress")?
-        .getattr("Bar")?
-        .call1((total, what))?;
+    let mut bar: Option<Bound<'_, PyAny>> = None;
     let result = std::thread::scope(|scope| -> PyResult<T> {
         let (tx, rx) = mpsc::channel();
         // Shared with the detached waits (a receiver alone is not `Sync`).
@@ -41,10 +38,24 @@ pub fn with_progress<T: Send>(
                 Ok(rx) => rx.recv_timeout(Duration::from_millis(100)),
                 Err(_) => Err(mpsc::RecvTimeoutError::Disconnected),
             });
-            bar.call_method1("update_to", (done.load(Ordering::Relaxed),))?;
             match got {
-                Ok(result) => return Ok(result),
-                Err(mpsc::RecvTimeoutError::Timeout) => continue,
+                Ok(result) => {
+                    if let Some(bar) = &bar {
+                        bar.call_method1("update_to", (done.load(Ordering::Relaxed),))?;
+                    }
+                    return Ok(result);
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {
+                    let shown = match &bar {
+                        Some(shown) => shown,
+                        None => bar.insert(
+                            py.import("stickslip._progress")?
+                                .getattr("Bar")?
+                                .call1((total, what))?,
+                        ),
+                    };
+                    shown.call_method1("update_to", (done.load(Ordering::Relaxed),))?;
+                }
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
                     return Err(pyo3::exceptions::PyRuntimeError::new_err(
                         "the computation stopped without a result",
@@ -53,6 +64,8 @@ pub fn with_progress<T: Send>(
             }
         }
     });
-    bar.call_method0("close")?;
+    if let Some(bar) = bar {
+        bar.call_method0("close")?;
+    }
     result
 }

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from ._model import Model, Param, check, models
 from ._results import Description, History, Motion, Result, Sweep
+from ._study import Basins, Curves, Lyapunov, Map
 from .errors import (
     InadmissibleError,
     InputError,
@@ -34,6 +35,10 @@ __all__ = [
     "History",
     "Description",
     "Sweep",
+    "Map",
+    "Curves",
+    "Lyapunov",
+    "Basins",
     "StickslipError",
     "ModelError",
     "ParamError",

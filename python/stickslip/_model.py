@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import json
+import operator
+import os
+import tempfile
 import warnings
 from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tuple, Union
 
@@ -10,6 +13,7 @@ import numpy as np
 
 from . import _native
 from ._results import Description, Motion, Sweep
+from ._study import Basins, Curves, Lyapunov, Map
 from .errors import InadmissibleError, InputError, NewtonError
 
 Number = Union[int, float]
@@ -136,6 +140,217 @@ class Model:
             self.name, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable)
         )
         return Sweep(json.loads(data))
+
+    def map(
+        self,
+        x: Tuple[str, Number, Number, int],
+        y: Tuple[str, Number, Number, int],
+        method: str = "continuation",
+        out: Optional[Union[str, "os.PathLike[str]"]] = None,
+        resume: bool = False,
+        progress: bool = True,
+        **fixed: Number,
+    ) -> Map:
+        """Which motions exist at each point of the grid ``x × y``, each axis
+        ``(name, from, to, count)`` (``("W", 0.2, 8, 100)``), the other
+        parameters at ``fixed`` (``stickslip map``), on all cores.
+
+        ``method``: ``"continuation"`` (neighbours' motions continued by
+        Newton) or ``"simulation"`` (every point simulated; slower). The map
+        is written point by point to the CSV file ``out`` (a temporary file,
+        deleted after reading, when ``None``); ``resume=True`` continues an
+        interrupted run from it. ``progress=False`` hides the progress bar."""
+        xa = _axis("x", x, named=True)
+        ya = _axis("y", y, named=True)
+        with _output(out, "map.csv") as path:
+            data, labels = _native.map(
+                self.name, _pairs(fixed), xa, ya, path, str(method), bool(resume), bool(progress)
+            )
+            result = json.loads(data)
+        result["file"] = None if out is None else str(out)
+        return Map(result, labels)
+
+    def curves(
+        self,
+        x: Tuple[str, Number, Number],
+        y: Tuple[str, Number, Number],
+        seed: Optional[Any] = None,
+        at: Optional[Any] = None,
+        count: Optional[int] = None,
+        spread: Optional[int] = None,
+        **fixed: Number,
+    ) -> Curves:
+        """The transition curves over the box ``x × y``, each side
+        ``(name, from, to)``, the other parameters at ``fixed``
+        (``stickslip curves``).
+
+        ``seed``: seed lines, ``{"Q0": 70}`` (the sweep along ``x`` at
+        ``Q0 = 70``; a list of values gives several lines) or ``[("Q0", 70),
+        ("W", 5)]``; default: the box's middle horizontal line. ``at``: lines
+        whose crossings with every curve are solved exactly, given alike.
+        ``count``: grid values of each line's sweep (default 100);
+        ``spread``: extra seed lines each way (default 3)."""
+        data = _native.curves(
+            self.name,
+            _pairs(fixed),
+            _side("x", x),
+            _side("y", y),
+            _lines("seed", seed),
+            _lines("at", at),
+            _count("count", count, 0),
+            _count("spread", spread, 0),
+        )
+        return Curves(json.loads(data))
+
+    def lyapunov(
+        self,
+        start: Sequence[Number] = (0.0, 0.0, 0.0),
+        transient: Optional[int] = None,
+        periods: Optional[int] = None,
+        **params: Number,
+    ) -> Lyapunov:
+        """The Lyapunov spectrum of the stroboscopic map along the trajectory
+        from ``start = (x, v, Wt)``, from the exact tangent map, with a verdict
+        (``stickslip lyapunov``): ``transient`` forcing periods discarded
+        (default 1000), then ``periods`` accumulated (default 10000; 10 or
+        more for an error estimate)."""
+        data = _native.lyapunov(
+            self.name,
+            _pairs(params),
+            _start(start),
+            _count("transient", transient, 0),
+            _count("periods", periods, 0),
+        )
+        return Lyapunov(json.loads(data))
+
+    def basins(
+        self,
+        x: Tuple[Number, Number, int],
+        y: Tuple[Number, Number, int],
+        phase: Number = 0.0,
+        samples: int = 1000,
+        seed: int = 1,
+        periods: Optional[int] = None,
+        lyapunov: Optional[int] = None,
+        out: Optional[Union[str, "os.PathLike[str]"]] = None,
+        resume: bool = False,
+        progress: bool = True,
+        **params: Number,
+    ) -> Basins:
+        """Which attractor each start ``(x, v)`` at the phase ``Wt = phase``
+        reaches, over the grid of displacements ``x = (from, to, count)`` and
+        velocities ``y = (from, to, count)``, and the basin stability from
+        ``samples`` random starts in the same box (seeded by ``seed``)
+        (``stickslip basins``), on all cores. ``periods``: forcing periods
+        simulated at most from each start (default 600); ``lyapunov``: those
+        of the exponent of a start that never settles (default 2000; 0: none).
+
+        The starts are written one by one to the CSV file ``out`` (a
+        temporary file, deleted after reading, when ``None``); ``resume=True``
+        continues an interrupted run from it. ``progress=False`` hides the
+        progress bar."""
+        xa = _axis("x", x, named=False)
+        va = _axis("y", y, named=False)
+        try:
+            ph = float(phase)
+        except (TypeError, ValueError):
+            raise InputError(f"phase {phase!r}: expected a number") from None
+        with _output(out, "basins.csv") as path:
+            data, xs, vs, ids, exps = _native.basins(
+                self.name,
+                _pairs(params),
+                xa,
+                va,
+                path,
+                ph,
+                _count("samples", samples, 0),
+                _count("seed", seed, 0),
+                _count("periods", periods, 0),
+                _count("lyapunov", lyapunov, 0),
+                bool(resume),
+                bool(progress),
+            )
+        result = json.loads(data)
+        if out is None:
+            result["file"] = None
+        return Basins(result, xs, vs, ids, exps)
+
+
+class _output:
+    """The path of an output file: ``out``, or one in a temporary folder
+    removed (with the file) on exit."""
+
+    def __init__(self, out: Any, name: str) -> None:
+        self._out = out
+        self._name = name
+        self._dir: Optional[tempfile.TemporaryDirectory] = None
+
+    def __enter__(self) -> str:
+        if self._out is not None:
+            return os.fspath(self._out)
+        self._dir = tempfile.TemporaryDirectory(prefix="stickslip-")
+        return os.path.join(self._dir.name, self._name)
+
+    def __exit__(self, *exc: Any) -> None:
+        if self._dir is not None:
+            self._dir.cleanup()
+
+
+def _count(what: str, n: Optional[int], least: int) -> Optional[int]:
+    """An integer argument at least ``least`` (``None`` passes through)."""
+    if n is None:
+        return None
+    try:
+        k = operator.index(n)
+    except TypeError:
+        raise InputError(f"{what}={n!r}: expected an integer") from None
+    if k < least:
+        raise InputError(f"{what}={k}: must be at least {least}")
+    return k
+
+
+def _axis(what: str, axis: Any, named: bool) -> tuple:
+    """``(name, from, to, count)`` (or ``(from, to, count)``), checked for shape and types."""
+    shape = "(name, from, to, count)" if named else "(from, to, count)"
+    try:
+        parts = list(axis)
+    except TypeError:
+        raise InputError(f"{what}={axis!r}: expected {shape}") from None
+    if len(parts) != (4 if named else 3):
+        raise InputError(f"{what}={tuple(parts)!r}: expected {shape}")
+    name = str(parts.pop(0)) if named else None
+    try:
+        lo, hi = float(parts[0]), float(parts[1])
+        n = operator.index(parts[2])
+    except (TypeError, ValueError):
+        raise InputError(f"{what}={tuple(axis)!r}: expected {shape} with an integer count") from None
+    return (name, lo, hi, n) if named else (lo, hi, n)
+
+
+def _side(what: str, side: Any) -> Tuple[str, float, float]:
+    """``(name, from, to)`` of a box."""
+    try:
+        name, lo, hi = side
+        return str(name), float(lo), float(hi)
+    except (TypeError, ValueError):
+        raise InputError(f"{what}={side!r}: expected (name, from, to)") from None
+
+
+def _lines(what: str, lines: Any) -> List[Tuple[str, float]]:
+    """Lines ``{"Q0": 70}``, ``{"Q0": [70, 90]}`` or ``[("Q0", 70), ...]`` as pairs."""
+    if lines is None:
+        return []
+    items = lines.items() if isinstance(lines, dict) else lines
+    out: List[Tuple[str, float]] = []
+    try:
+        for name, values in items:
+            vals = values if isinstance(values, (list, tuple, np.ndarray)) else [values]
+            out.extend((str(name), float(v)) for v in vals)
+    except (TypeError, ValueError):
+        raise InputError(
+            f"{what}={lines!r}: expected {{name: value or values}} or [(name, value), ...]"
+        ) from None
+    return out
 
 
 def _start(start: Sequence[Number]) -> Tuple[float, float, float]:

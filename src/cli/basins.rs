@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use serde_json::json;
+use stickslip::output::basins_summary;
 use stickslip::output::figure::basins::plot_basins;
 use stickslip::study::basins::{run_basins, BasinOptions, BasinSettings, Basins};
 use stickslip::study::map::GridAxis;
@@ -149,23 +149,5 @@ fn text(b: &Basins, out: &std::path::Path) -> String {
 }
 
 fn json(b: &Basins, out: &std::path::Path) -> Result<String, CliError> {
-    let h = &b.header;
-    let params: serde_json::Map<String, serde_json::Value> = h
-        .params
-        .iter()
-        .map(|(n, v)| (n.clone(), json!(v)))
-        .collect();
-    let value = json!({
-        "model": h.model,
-        "params": params,
-        "phase": h.phase,
-        "x": {"from": h.x.from, "to": h.x.to, "count": h.x.count},
-        "v": {"from": h.v.from, "to": h.v.to, "count": h.v.count},
-        "samples": h.samples,
-        "seed": h.seed,
-        "file": out.display().to_string(),
-        "complete": b.complete,
-        "attractors": b.attractors,
-    });
-    Ok(serde_json::to_string_pretty(&value)?)
+    Ok(basins_summary::json(b, out)?)
 }

@@ -5,13 +5,14 @@
 //! * [`lyapunov_report`] — the Lyapunov spectrum as text or JSON;
 //! * [`history`] — a motion's sampled time history, and its CSV;
 //! * [`describe`] — a model's description (text and JSON);
-//! * [`curves_table`] — a curves run as text or JSON;
+//! * [`curves_table`] — a curves run as text or JSON; [`basins_summary`] — a basin run as JSON;
 //! * [`sweep_table`] — a sweep as text or JSON; [`map_summary`] — what a map run did;
 //! * [`figure`] — the figures (SVG or PNG): a motion's six panels, a sweep,
 //!   a map, the trade.
 //!
 //! Depends on every layer below; nothing below depends on it.
 
+pub mod basins_summary;
 pub mod curves_table;
 pub mod describe;
 pub mod figure;

@@ -6,12 +6,14 @@
 //! * [`basins`] — basins of attraction and basin stability, parallel and resumable;
 //! * [`diagram`] — the brute-force orbit diagram, swept up and down, with exponents and branches;
 //! * [`trade`] — the speed/accuracy trade of a smooth law's N-piece models;
-//! * `record` — the resumable record file that `map` and `basins` keep.
+//! * `record` — the resumable record file that `map` and `basins` keep;
+//! * `progress` — how `map` and `basins` report their finished points (a bar, a shared counter).
 
 pub mod basins;
 pub mod curves;
 pub mod diagram;
 pub mod map;
+mod progress;
 pub(crate) mod record;
 pub mod search;
 pub mod sweep;

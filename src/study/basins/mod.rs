@@ -45,7 +45,7 @@ use std::collections::BTreeMap;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write};
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -55,6 +55,7 @@ use serde::Serialize;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
 use crate::study::map::{AxisError, GridAxis};
+use crate::study::progress::Progress;
 
 pub use classify::{
     attractor_label, classify, discover, irregular, seed_indices, Known, CHAOTIC, QUASI_PERIODIC,
@@ -259,6 +260,23 @@ pub fn run_basins<M: Model>(
     out: &Path,
     opts: &BasinOptions,
 ) -> Result<Basins, BasinsError> {
+    run_basins_counting::<M>(params, x, v, settings, out, opts, None)
+}
+
+/// [`run_basins`], counting into `counter` the starts that are in the file
+/// (set first to those already there, then one more as each finishes; out
+/// of [`BasinHeader::len`]), for a caller that shows its own progress while
+/// the run goes on (the Python package). `opts.progress` still decides the
+/// terminal bar.
+pub fn run_basins_counting<M: Model>(
+    params: &M::Params,
+    x: &GridAxis,
+    v: &GridAxis,
+    settings: &BasinSettings,
+    out: &Path,
+    opts: &BasinOptions,
+    counter: Option<&AtomicU64>,
+) -> Result<Basins, BasinsError> {
     let start = Instant::now();
     check_axis(x, "--x", "x")?;
     check_axis(v, "--y", "v")?;
@@ -347,7 +365,11 @@ pub fn run_basins<M: Model>(
     } else {
         Some(discover(&sim, &header))
     };
-    let bar = progress_bar(opts.progress, total as u64, already_done as u64);
+    let bar = Progress::new(
+        progress_bar(opts.progress, total as u64, already_done as u64),
+        counter,
+        already_done as u64,
+    );
     let file = Mutex::new(file);
     let new_starts: Mutex<Vec<StartResult>> = Mutex::new(Vec::with_capacity(todo.len()));
     let write_error: Mutex<Option<io::Error>> = Mutex::new(None);
@@ -379,10 +401,10 @@ pub fn run_basins<M: Model>(
                 .lock()
                 .unwrap_or_else(|e| e.into_inner())
                 .push(record);
-            bar.inc(1);
+            bar.inc();
         });
     }
-    bar.finish_and_clear();
+    bar.finish();
     drop(file);
     if let Some(e) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
         return Err(io_err(out)(e));

@@ -66,7 +66,7 @@ pub use continuation::{classify_tile, no_motion_exists, Continuer, CONTINUATION_
 pub use error::{AxisError, MapError};
 pub use file::{MapFile, MapHeader, PointResult};
 pub use grid::{grid_len, tile_count, tile_of, tile_points, GridAxis, Shard, TILE};
-pub use run::{merge, run_map, MapMethod, MapOptions, Summary};
+pub use run::{merge, run_map, run_map_counting, MapMethod, MapOptions, Summary};
 
 /// Forcing periods simulated at most from each start.
 pub const MAX_PERIODS: u32 = 600;

@@ -6,13 +6,14 @@ use std::collections::BTreeMap;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
 use crate::model::Model;
+use crate::study::progress::Progress;
 
 use super::classify::classify_point;
 use super::continuation::classify_tile;
@@ -105,6 +106,22 @@ pub fn run_map<M: Model>(
     y_axis: &GridAxis,
     out: &Path,
     opts: &MapOptions,
+) -> Result<Summary, MapError> {
+    run_map_counting::<M>(base, x_axis, y_axis, out, opts, None)
+}
+
+/// [`run_map`], counting into `counter` the points of the part that are in
+/// the file (set first to those already there, then one more as each
+/// finishes; out of [`Summary::shard_points`]), for a caller that shows its
+/// own progress while the run goes on (the Python package).
+/// `opts.progress` still decides the terminal bar.
+pub fn run_map_counting<M: Model>(
+    base: &M::Params,
+    x_axis: &GridAxis,
+    y_axis: &GridAxis,
+    out: &Path,
+    opts: &MapOptions,
+    counter: Option<&AtomicU64>,
 ) -> Result<Summary, MapError> {
     let start = Instant::now();
     for axis in [x_axis, y_axis] {
@@ -211,7 +228,11 @@ pub fn run_map<M: Model>(
         .filter(|&i| in_part(i) && !done.contains_key(&i))
         .collect();
 
-    let bar = progress_bar(opts.progress, shard_points as u64, already_done as u64);
+    let bar = Progress::new(
+        progress_bar(opts.progress, shard_points as u64, already_done as u64),
+        counter,
+        already_done as u64,
+    );
     let file = Mutex::new(file);
     let new_points: Mutex<Vec<PointResult>> = Mutex::new(Vec::with_capacity(todo.len()));
     let write_error: Mutex<Option<io::Error>> = Mutex::new(None);
@@ -246,7 +267,7 @@ pub fn run_map<M: Model>(
                 .lock()
                 .unwrap_or_else(|e| e.into_inner())
                 .push(record);
-            bar.inc(1);
+            bar.inc();
         }
     };
     let stop = || failed.load(Ordering::Relaxed) || claimed.load(Ordering::Relaxed) >= limit;
@@ -269,7 +290,7 @@ pub fn run_map<M: Model>(
             write(records);
         }),
     }
-    bar.finish_and_clear();
+    bar.finish();
     drop(file);
     if let Some(e) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
         return Err(io_err(out)(e));

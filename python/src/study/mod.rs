@@ -1,8 +1,14 @@
-//! The analyses over parameters: `sweep` (and, as the CLI has them, `map`,
-//! `curves`, `lyapunov`, `basins`), each returning the CLI's JSON.
+//! The analyses over parameters and starts, each returning the CLI's JSON:
+//! `sweep` (here), [`map`], [`curves`], [`lyapunov`], [`basins`].
+
+mod basins;
+mod curves;
+mod lyapunov;
+mod map;
 
 use pyo3::prelude::*;
 use stickslip::output::sweep_table;
+use stickslip::study::map::{AxisError, GridAxis};
 use stickslip::study::sweep::{sweep_values, SweepOptions};
 use stickslip::Model;
 
@@ -12,7 +18,38 @@ use crate::failure::Failure;
 /// Add this module's functions.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(map::map, m)?)?;
+    m.add_function(wrap_pyfunction!(curves::curves, m)?)?;
+    m.add_function(wrap_pyfunction!(lyapunov::lyapunov, m)?)?;
+    m.add_function(wrap_pyfunction!(basins::basins, m)?)?;
     Ok(())
+}
+
+/// A grid axis as given from Python, `(name, from, to, count)`, checked as
+/// the CLI checks `NAME=FROM:TO:COUNT`: a count of at least 1, finite
+/// bounds (the name is checked by the analysis: a parameter of the model).
+pub(crate) fn axis(name: &str, from: f64, to: f64, count: i64) -> Result<GridAxis, Failure> {
+    let text = format!("{name}={from}:{to}:{count}");
+    let Some(count) = usize::try_from(count).ok().filter(|&n| n > 0) else {
+        return Err(AxisError::Count {
+            text,
+            value: count.to_string(),
+        }
+        .into());
+    };
+    if let Some(bad) = [from, to].into_iter().find(|b| !b.is_finite()) {
+        return Err(AxisError::NotFinite {
+            text,
+            value: bad.to_string(),
+        }
+        .into());
+    }
+    Ok(GridAxis {
+        name: name.to_string(),
+        from,
+        to,
+        count,
+    })
 }
 
 struct Sweep {

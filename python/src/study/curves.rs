@@ -1,0 +1,79 @@
+//! `curves`: the two-parameter transition curves of a box (`stickslip curves`).
+
+use pyo3::prelude::*;
+use stickslip::output::curves_table;
+use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
+use stickslip::Model;
+
+use crate::command::{params, with_model, Command};
+use crate::failure::Failure;
+
+/// A side of the box as Python gives it: `(name, from, to)`.
+type Side = (String, f64, f64);
+
+struct Curves {
+    set: Vec<(String, f64)>,
+    x: Side,
+    y: Side,
+    seeds: Vec<(String, f64)>,
+    at: Vec<(String, f64)>,
+    settings: CurvesSettings,
+}
+
+impl Command for Curves {
+    type Output = String;
+    fn run<M: Model>(self) -> Result<String, Failure> {
+        let base = params::<M>(&self.set)?;
+        let mut opts = CurvesOptions {
+            x: (self.x.0, [self.x.1, self.x.2]),
+            y: (self.y.0, [self.y.1, self.y.2]),
+            seeds: Vec::new(),
+            at: Vec::new(),
+        };
+        for (name, value) in &self.seeds {
+            let line = opts.line("seed", name, *value)?;
+            opts.seeds.push(line);
+        }
+        for (name, value) in &self.at {
+            let line = opts.line("at", name, *value)?;
+            opts.at.push(line);
+        }
+        let found = curves_with::<M>(&base, &opts, &self.settings)?;
+        Ok(curves_table::json(&found)?)
+    }
+}
+
+/// `stickslip curves --json`: the curves of the box `x × y` (each `(name,
+/// from, to)`), from the seed lines `seeds` (`(name, value)`: the sweep
+/// along the other parameter), with their crossings of the lines `at`;
+/// `count` grid values per line's sweep, `spread` extra lines each way.
+// One argument per Python keyword.
+#[allow(clippy::too_many_arguments)]
+#[pyfunction]
+#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None))]
+pub fn curves(
+    py: Python<'_>,
+    model: &str,
+    set: Vec<(String, f64)>,
+    x: Side,
+    y: Side,
+    seeds: Vec<(String, f64)>,
+    at: Vec<(String, f64)>,
+    count: Option<usize>,
+    spread: Option<usize>,
+) -> PyResult<String> {
+    let defaults = CurvesSettings::default();
+    let cmd = Curves {
+        set,
+        x,
+        y,
+        seeds,
+        at,
+        settings: CurvesSettings {
+            count: count.unwrap_or(defaults.count),
+            spread: spread.unwrap_or(defaults.spread),
+            ..defaults
+        },
+    };
+    Ok(py.detach(|| with_model(model, cmd))?)
+}
