@@ -22,6 +22,7 @@ from .errors import (
     SimulationError,
     StickslipError,
     StructureError,
+    UnsettledError,
 )
 
 __all__ = [
@@ -43,4 +44,5 @@ __all__ = [
     "InadmissibleError",
     "SeedError",
     "SimulationError",
+    "UnsettledError",
 ]
