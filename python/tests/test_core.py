@@ -8,6 +8,8 @@ import csv
 import io
 import json
 import math
+import os
+import pathlib
 
 import numpy as np
 import pytest
@@ -277,3 +279,24 @@ def test_simulation_error():
 def test_errors_are_stickslip_errors():
     for name in stickslip.errors.__all__:
         assert issubclass(getattr(stickslip, name), stickslip.StickslipError)
+
+
+def test_the_readme_example_runs(tmp_path):
+    """examples/readme.py is the README's ten-line example: it runs and draws."""
+    import runpy
+
+    from conftest import REPO
+
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("pandas")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    (tmp_path / "docs").mkdir()
+    cwd = pathlib.Path.cwd()
+    os.chdir(tmp_path)
+    try:
+        runpy.run_path(str(REPO / "examples" / "readme.py"))
+    finally:
+        os.chdir(cwd)
+    assert (tmp_path / "docs" / "python_example.png").stat().st_size > 10_000
