@@ -11,7 +11,7 @@ basins of friction oscillators, computed in process by the Rust library.
 from __future__ import annotations
 
 from ._model import Model, Param, check, models
-from ._results import Description, History, Motion, Result, Sweep
+from ._results import Description, History, Motion, OrbitDiagram, Result, Sweep
 from .errors import (
     InadmissibleError,
     InputError,
@@ -35,6 +35,7 @@ __all__ = [
     "History",
     "Description",
     "Sweep",
+    "OrbitDiagram",
     "StickslipError",
     "ModelError",
     "ParamError",

@@ -38,3 +38,15 @@ def sweep(
     every: Optional[int] = None,
     unstable: bool = True,
 ) -> str: ...
+def orbit_diagram(
+    model: str,
+    set: Pairs,
+    name: str,
+    from_: float,
+    to: float,
+    count: int,
+    transient: Optional[int] = None,
+    periods: Optional[int] = None,
+    lyapunov: Optional[int] = None,
+    branches: bool = True,
+) -> Tuple[str, List[str]]: ...

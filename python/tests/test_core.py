@@ -300,3 +300,24 @@ def test_the_readme_example_runs(tmp_path):
     finally:
         os.chdir(cwd)
     assert (tmp_path / "docs" / "python_example.png").stat().st_size > 10_000
+
+
+def test_orbit_diagram_is_the_clis(cli):
+    m = stickslip.Model("stribeck8")
+    d = m.orbit_diagram("W", 2.2, 2.45, 6, transient=60, periods=12, lyapunov=60, Q0=3)
+    want = cli.json(
+        "orbit-diagram", "--model", "stribeck8", "--param", "W=2.2:2.45:6", "--set", "Q0=3",
+        "--transient", "60", "--periods", "12", "--lyapunov", "60",
+    )
+    close(d.to_dict(), want)
+    s = d.samples("down")
+    assert s["W"].shape == s["x"].shape == (6 * 12,)
+    assert d.exponents().shape == (6,)
+
+
+def test_orbit_diagram_errors(paper, cli):
+    with pytest.raises(stickslip.ParamError) as e:
+        paper.orbit_diagram("Q9", 1, 2, 3)
+    assert str(e.value) == cli.error("orbit-diagram", "--param", "Q9=1:2:3")
+    with pytest.raises(stickslip.InputError):
+        paper.orbit_diagram("W", 1, 2, 3, periods=0)
