@@ -24,10 +24,15 @@ pub enum Kind {
     Structure,
     /// `NewtonError`: Newton did not converge.
     Newton,
+    /// `InadmissibleError`: the solution is not a motion.
+    Inadmissible,
     /// `SeedError`: no start for Newton (no simulated motion follows the structure).
     Seed,
     /// `SimulationError`: the simulation could not go on.
     Simulation,
+    /// `UnsettledError`: the simulation did not settle on a motion the
+    /// search recognises within the periods given.
+    Unsettled,
     /// `InputError`: another bad argument (a range, a count, a file).
     Input,
 }
@@ -39,8 +44,10 @@ impl Kind {
             Kind::Param => "ParamError",
             Kind::Structure => "StructureError",
             Kind::Newton => "NewtonError",
+            Kind::Inadmissible => "InadmissibleError",
             Kind::Seed => "SeedError",
             Kind::Simulation => "SimulationError",
+            Kind::Unsettled => "UnsettledError",
             Kind::Input => "InputError",
         }
     }
@@ -86,10 +93,14 @@ impl From<SimError> for Failure {
 impl From<OrbitError> for Failure {
     fn from(e: OrbitError) -> Self {
         let kind = match &e {
+            OrbitError::Params(_) => Kind::Param,
             OrbitError::Structure(_) => Kind::Structure,
             OrbitError::Simulation(_) => Kind::Simulation,
+            OrbitError::Guess(_) => Kind::Input,
             OrbitError::NotConverged(_) => Kind::Newton,
-            _ => Kind::Input,
+            OrbitError::Inadmissible(_) => Kind::Inadmissible,
+            OrbitError::Unsettled { .. } | OrbitError::CycleTooLong { .. } => Kind::Unsettled,
+            OrbitError::NoSeed(_) => Kind::Seed,
         };
         Self::new(kind, e)
     }

@@ -11,6 +11,7 @@
 
 mod catalogue;
 mod command;
+mod diagram;
 mod failure;
 mod motion;
 mod progress;
@@ -28,6 +29,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(motion::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(motion::orbit, m)?)?;
     m.add_class::<motion::Trajectory>()?;
+    m.add_function(wrap_pyfunction!(diagram::orbit_diagram, m)?)?;
     study::register(m)?;
     Ok(())
 }

@@ -11,7 +11,7 @@ basins of friction oscillators, computed in process by the Rust library.
 from __future__ import annotations
 
 from ._model import Model, Param, check, models
-from ._results import Description, History, Motion, Result, Sweep
+from ._results import Description, History, Motion, OrbitDiagram, Result, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import (
     InadmissibleError,
@@ -23,6 +23,7 @@ from .errors import (
     SimulationError,
     StickslipError,
     StructureError,
+    UnsettledError,
 )
 
 __all__ = [
@@ -35,6 +36,7 @@ __all__ = [
     "History",
     "Description",
     "Sweep",
+    "OrbitDiagram",
     "Map",
     "Curves",
     "Lyapunov",
@@ -48,4 +50,5 @@ __all__ = [
     "InadmissibleError",
     "SeedError",
     "SimulationError",
+    "UnsettledError",
 ]

@@ -12,7 +12,7 @@ from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _native
-from ._results import Description, Motion, Sweep
+from ._results import Description, Motion, OrbitDiagram, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import InadmissibleError, InputError, NewtonError
 
@@ -140,6 +140,31 @@ class Model:
             self.name, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable)
         )
         return Sweep(json.loads(data))
+
+    def orbit_diagram(
+        self,
+        param: str,
+        start: Number,
+        stop: Number,
+        count: int,
+        transient: Optional[int] = None,
+        periods: Optional[int] = None,
+        lyapunov: Optional[int] = None,
+        branches: bool = True,
+        **fixed: Number,
+    ) -> OrbitDiagram:
+        """The brute-force bifurcation diagram over ``count`` values of
+        ``param`` from ``start`` to ``stop`` (``stickslip orbit-diagram``):
+        ``transient`` forcing periods discarded, ``periods`` samples kept and
+        ``lyapunov`` periods of the largest exponent at each value; with
+        ``branches``, the sweep's periodic branches at the section."""
+        data, notes = _native.orbit_diagram(
+            self.name, _pairs(fixed), str(param), float(start), float(stop), int(count),
+            transient, periods, lyapunov, bool(branches),
+        )
+        for note in notes:
+            warnings.warn(note, stacklevel=2)
+        return OrbitDiagram(json.loads(data), notes)
 
     def map(
         self,

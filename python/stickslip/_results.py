@@ -202,3 +202,39 @@ class Sweep(Result):
             f"Sweep({self.param}: {len(self.points)} values, {len(self.branches)} branches, "
             f"{len(self.transitions)} transitions, {len(self.bifurcations)} bifurcations)"
         )
+
+
+class OrbitDiagram(Result):
+    """The brute-force bifurcation diagram (``stickslip orbit-diagram
+    --json``): at each parameter value, the stroboscopic samples ``x``, ``v``
+    at ``W t = 0 mod 2π`` after the transient, swept ``up`` and ``down``
+    (each value starting from the previous one's final state, so hysteresis
+    shows), the largest Lyapunov exponent per unit time (``nan`` where not
+    computed or where a stick collapses the map, ``null`` in the JSON), and
+    the sweep's periodic ``branches`` at the section."""
+
+    def __init__(self, data: Dict[str, Any], notes: List[str]) -> None:
+        super().__init__(data)
+        self.notes = list(notes)
+        self.param: str = data["param"]
+        self.up: List[Dict[str, Any]] = data["up"]
+        self.down: List[Dict[str, Any]] = data["down"]
+        self.branches: List[Dict[str, Any]] = data["branches"]
+        self.values = np.array([c["value"] for c in self.up], dtype=float)
+
+    def samples(self, direction: str = "up") -> Dict[str, np.ndarray]:
+        """The samples of one sweep direction as flat arrays for a scatter
+        plot: the parameter, ``x``, ``v`` (one entry per sample)."""
+        cols = {"up": self.up, "down": self.down}[direction]
+        par = np.concatenate([np.full(len(c["x"]), c["value"]) for c in cols]) if cols else np.zeros(0)
+        x = np.concatenate([np.asarray(c["x"], dtype=float) for c in cols]) if cols else np.zeros(0)
+        v = np.concatenate([np.asarray(c["v"], dtype=float) for c in cols]) if cols else np.zeros(0)
+        return {self.param: par, "x": x, "v": v}
+
+    def exponents(self, direction: str = "up") -> np.ndarray:
+        """The largest exponent at each value of one direction (``nan`` where none)."""
+        cols = {"up": self.up, "down": self.down}[direction]
+        return np.array([np.nan if c["exponent"] is None else c["exponent"] for c in cols], dtype=float)
+
+    def __repr__(self) -> str:
+        return f"OrbitDiagram({self.param}: {len(self.up)} values, {len(self.branches)} branches)"

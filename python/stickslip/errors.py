@@ -57,6 +57,13 @@ class SeedError(StickslipError, RuntimeError):
     ``guess=(Wt, x)``)."""
 
 
+class UnsettledError(StickslipError, RuntimeError):
+    """The simulation did not settle on a periodic motion, a certified NM or
+    a permanent stick within the forcing periods given (or settled on a cycle
+    longer than the search recognises): give more ``periods``, or ask
+    ``lyapunov`` what is there."""
+
+
 class SimulationError(StickslipError, RuntimeError):
     """The simulation could not go on (too many events, a bad start state)."""
 
@@ -71,4 +78,5 @@ __all__ = [
     "InadmissibleError",
     "SeedError",
     "SimulationError",
+    "UnsettledError",
 ]

@@ -2,16 +2,14 @@
 basins) against the command-line tool: the same numbers (bit for bit), the
 same files, the same errors as Python exceptions, and the progress bar.
 
-The CLI is the release binary ``STICKSLIP_CLI`` (default
-``target/release/stickslip`` of the repository: ``cargo build --release``).
+The CLI is the ``cli`` fixture of ``conftest.py`` (``STICKSLIP_CLI``, else
+the repository's ``target/release/stickslip``).
 """
 
 from __future__ import annotations
 
 import csv
 import json
-import os
-import subprocess
 import tempfile
 from pathlib import Path
 from typing import Any, Dict, List
@@ -22,9 +20,6 @@ import pytest
 import stickslip
 from stickslip import errors
 
-ROOT = Path(__file__).resolve().parents[2]
-CLI = os.environ.get("STICKSLIP_CLI", str(ROOT / "target" / "release" / "stickslip"))
-
 # The README's Fig. 11 range, coarsely.
 MAP_X = ("W", 0.2, 8.0, 6)
 MAP_Y = ("Q0", 0.0, 180.0, 5)
@@ -34,20 +29,11 @@ BASIN_X = (0.99, 1.005, 12)
 BASIN_V = (1.335, 1.36, 10)
 
 
-def cli(*args: str, ok: bool = True) -> subprocess.CompletedProcess:
-    if not Path(CLI).exists():
-        pytest.skip(f"no CLI at {CLI}: cargo build --release (or set STICKSLIP_CLI)")
-    run = subprocess.run([CLI, *args], capture_output=True, text=True)
-    if ok:
-        assert run.returncode == 0, run.stderr
-    return run
-
-
-def cli_error(*args: str) -> str:
-    """The CLI's error message for a bad input (without ``error: ``)."""
-    run = cli(*args, ok=False)
-    assert run.returncode != 0
-    return run.stderr
+def ok(cli, *args: str) -> str:
+    """The CLI's stdout; it must succeed."""
+    run = cli.run(*args)
+    assert run.returncode == 0, run.stderr
+    return run.stdout
 
 
 def spec(axis: tuple) -> str:
@@ -81,9 +67,9 @@ def paper() -> stickslip.Model:
 
 
 @pytest.mark.parametrize("method", ["continuation", "simulation"])
-def test_map_agrees_with_the_cli(paper, tmp_path, method):
+def test_map_agrees_with_the_cli(cli, paper, tmp_path, method):
     theirs = tmp_path / "cli.csv"
-    cli("map", "--x", spec(MAP_X), "--y", spec(MAP_Y), "--method", method, "--out", str(theirs))
+    ok(cli, "map", "--x", spec(MAP_X), "--y", spec(MAP_Y), "--method", method, "--out", str(theirs))
     ours = tmp_path / "py.csv"
     m = paper.map(x=MAP_X, y=MAP_Y, method=method, out=ours, progress=False)
     # The same file, byte for byte.
@@ -115,18 +101,19 @@ def test_map_agrees_with_the_cli(paper, tmp_path, method):
     # The CLI's summary lines: count, label.
     printed = {
         line.split(None, 1)[1]: int(line.split(None, 1)[0])
-        for line in cli_summary(theirs, method).splitlines()[1:]
+        for line in cli_summary(cli, theirs, method).splitlines()[1:]
     }
     assert printed == counts
     df = m.to_pandas()
     assert list(df["label"]) == list(m.labels.ravel()) and list(df["W"]) == [p["W"] for p in d["points"]]
 
 
-def cli_summary(path: Path, method: str) -> str:
+def cli_summary(cli, path: Path, method: str) -> str:
     """``stickslip map --resume`` of a finished map prints its summary again."""
-    return cli(
+    return ok(
+        cli,
         "map", "--x", spec(MAP_X), "--y", spec(MAP_Y), "--method", method, "--out", str(path), "--resume"
-    ).stdout
+    )
 
 
 def test_map_in_a_temporary_file_leaves_nothing(paper, tmp_path, monkeypatch):
@@ -152,10 +139,10 @@ def test_map_resume(paper, tmp_path):
     assert np.array_equal(again.labels, first.labels)
 
 
-def test_map_bad_inputs(paper, tmp_path):
+def test_map_bad_inputs(cli, paper, tmp_path):
     with pytest.raises(errors.ParamError) as e:
         paper.map(x=("Z", 0, 1, 3), y=MAP_Y, out=tmp_path / "a.csv", progress=False)
-    assert str(e.value) in cli_error("map", "--x", "Z=0:1:3", "--y", spec(MAP_Y), "--out", str(tmp_path / "b.csv"))
+    assert str(e.value) == cli.error("map", "--x", "Z=0:1:3", "--y", spec(MAP_Y), "--out", str(tmp_path / "b.csv"))
     with pytest.raises(errors.InputError, match="must be a positive integer"):
         paper.map(x=("W", 0.2, 8, 0), y=MAP_Y, progress=False)
     with pytest.raises(errors.InputError, match="not a finite number"):
@@ -181,12 +168,13 @@ def test_map_bad_inputs(paper, tmp_path):
 # ---------------------------------------------------------------- curves
 
 
-def test_curves_agree_with_the_cli(paper):
+def test_curves_agree_with_the_cli(cli, paper):
     theirs = json.loads(
-        cli(
+        ok(
+            cli,
             "curves", "--x", "W=3:5", "--y", "Q0=60:80", "--seed", "Q0=70", "--at", "W=4",
             "--count", "30", "--spread", "0", "--json",
-        ).stdout
+        )
     )
     c = paper.curves(x=("W", 3, 5), y=("Q0", 60, 80), seed={"Q0": 70}, at=[("W", 4)], count=30, spread=0)
     assert c.to_dict() == theirs
@@ -206,14 +194,14 @@ def test_curves_agree_with_the_cli(paper):
     assert len(c.to_pandas()) == len(c)
 
 
-def test_curves_bad_inputs(paper):
+def test_curves_bad_inputs(cli, paper):
     box = dict(x=("W", 3, 5), y=("Q0", 60, 80), count=30, spread=0)
     with pytest.raises(errors.InputError) as e:
         paper.curves(**{**box, "x": ("W", 5, 3)})
-    assert str(e.value) in cli_error("curves", "--x", "W=5:3", "--y", "Q0=60:80")
+    assert str(e.value) == cli.error("curves", "--x", "W=5:3", "--y", "Q0=60:80")
     with pytest.raises(errors.ParamError) as e:
         paper.curves(**{**box, "x": ("Z", 3, 5)})
-    assert str(e.value) in cli_error("curves", "--x", "Z=3:5", "--y", "Q0=60:80")
+    assert str(e.value) == cli.error("curves", "--x", "Z=3:5", "--y", "Q0=60:80")
     with pytest.raises(errors.InputError, match="neither"):
         paper.curves(**box, seed={"d": 0.1})
     with pytest.raises(errors.InputError, match="outside the box"):
@@ -234,14 +222,15 @@ def test_curves_bad_inputs(paper):
         ("paper", {"W": 5, "Q0": 70}, (0.5, -0.25, 1.0)),  # periodic
     ],
 )
-def test_lyapunov_agrees_with_the_cli(model, params, start):
+def test_lyapunov_agrees_with_the_cli(cli, model, params, start):
     sets = ",".join(f"{k}={v}" for k, v in params.items())
     frm = ",".join(str(u) for u in start)
     theirs = json.loads(
-        cli(
+        ok(
+            cli,
             "lyapunov", "--model", model, "--set", sets, f"--from={frm}",
             "--transient", "50", "--periods", "1500", "--json",
-        ).stdout
+        )
     )
     ly = stickslip.Model(model).lyapunov(start=start, transient=50, periods=1500, **params)
     assert ly.to_dict() == theirs
@@ -259,7 +248,7 @@ def test_lyapunov_agrees_with_the_cli(model, params, start):
         assert np.allclose(ly.per_period, ly.exponents * 2 * np.pi / 5, rtol=1e-12, atol=0)
 
 
-def test_lyapunov_bad_inputs(paper):
+def test_lyapunov_bad_inputs(cli, paper):
     with pytest.raises(errors.InputError, match="at least 1"):
         paper.lyapunov(periods=0)
     with pytest.raises(errors.InputError, match="start"):
@@ -268,10 +257,10 @@ def test_lyapunov_bad_inputs(paper):
         paper.lyapunov(periods=2.5)
     with pytest.raises(errors.ParamError) as e:
         paper.lyapunov(W=-1, periods=10)
-    assert str(e.value) in cli_error("lyapunov", "--set", "W=-1", "--periods", "10")
+    assert str(e.value) == cli.error("lyapunov", "--set", "W=-1", "--periods", "10")
     with pytest.raises(errors.SimulationError, match="blows up") as e:
         paper.lyapunov(start=(1e308, 0, 0), transient=0, periods=10)
-    assert str(e.value) in cli_error("lyapunov", "--from", "1e308,0,0", "--transient", "0", "--periods", "10")
+    assert str(e.value) == cli.error("lyapunov", "--from", "1e308,0,0", "--transient", "0", "--periods", "10")
 
 
 # ---------------------------------------------------------------- basins
@@ -285,9 +274,9 @@ def basin_args(out: Path, samples: int) -> List[str]:
     ]
 
 
-def test_basins_agree_with_the_cli(paper, tmp_path):
+def test_basins_agree_with_the_cli(cli, paper, tmp_path):
     out = tmp_path / "b.csv"
-    theirs = json.loads(cli(*basin_args(out, 60)).stdout)
+    theirs = json.loads(ok(cli, *basin_args(out, 60)))
     file = out.read_bytes()
     rows = read_records(out)
     out.unlink()
@@ -327,7 +316,7 @@ def test_basins_agree_with_the_cli(paper, tmp_path):
     assert d == theirs and np.array_equal(t.ids, b.ids)
 
 
-def test_basins_bad_inputs(paper, tmp_path):
+def test_basins_bad_inputs(cli, paper, tmp_path):
     with pytest.raises(errors.InputError, match="must be a positive integer"):
         paper.basins(x=(0, 1, 0), y=BASIN_V, progress=False, **BASIN_SET)
     with pytest.raises(errors.InputError) as e:
@@ -339,7 +328,7 @@ def test_basins_bad_inputs(paper, tmp_path):
         paper.basins(x=BASIN_X, y=BASIN_V, samples=-1, progress=False)
     with pytest.raises(errors.ParamError) as e:
         paper.basins(x=BASIN_X, y=BASIN_V, samples=0, progress=False, c=-1)
-    assert str(e.value) in cli_error(
+    assert str(e.value) == cli.error(
         "basins", "--set", "c=-1", "--x", "x=0:1:2", "--y", "v=0:1:2", "--out", str(tmp_path / "no.csv")
     )
     out = tmp_path / "b.csv"

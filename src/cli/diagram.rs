@@ -7,9 +7,8 @@ use std::path::PathBuf;
 use clap::Args;
 use stickslip::output::figure::diagram::plot_diagram;
 use stickslip::study::diagram::{
-    branch_sections, orbit_diagram, Column, DiagramOptions, OrbitDiagram,
+    orbit_diagram, overlay_branches, Column, DiagramOptions, OrbitDiagram,
 };
-use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
 
 use super::args::{check_plot_path, with_model, Assignments, ParamRange, WithModel};
@@ -76,17 +75,7 @@ impl WithModel for DiagramCmd {
             orbit_diagram::<M>(base, &range.name, range.from, range.to, range.count, opts)?;
         let mut notes = Vec::new();
         if !a.no_branches {
-            match sweep::<M>(
-                base,
-                &range.name,
-                range.from.min(range.to),
-                range.from.max(range.to),
-                range.count,
-                SweepOptions::default(),
-            ) {
-                Ok(sw) => diagram.branches = branch_sections::<M>(base, &sw),
-                Err(e) => notes.push(format!("note: no branches drawn: the sweep failed: {e}")),
-            }
+            notes.extend(overlay_branches::<M>(base, &mut diagram));
         }
         if let Some(plot) = &a.plot {
             let title = format!(

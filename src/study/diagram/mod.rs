@@ -20,7 +20,7 @@ use crate::model::param::{ParamError, ParamSet};
 use crate::model::Model;
 use crate::orbit::lyapunov::{spectrum, LyapunovOptions};
 
-pub use section::{branch_sections, BranchSection, SectionPoint};
+pub use section::{branch_sections, overlay_branches, BranchSection, SectionPoint};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

@@ -13,7 +13,9 @@ use crate::orbit::known::stroboscopic_states;
 use crate::orbit::motion::solve;
 use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use crate::orbit::structure::Structure;
-use crate::study::sweep::{BranchSummary, Sweep};
+use crate::study::sweep::{sweep, BranchSummary, Sweep, SweepOptions};
+
+use super::OrbitDiagram;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
@@ -109,4 +111,29 @@ fn unwrap(points: &[SwitchingPoint]) -> Vec<SwitchingPoint> {
         out.push(SwitchingPoint { phase, x: p.x });
     }
     out
+}
+
+/// Place the branches of a sweep over the diagram's range (the default
+/// sweep options) on `diagram`'s section. A sweep that fails leaves the
+/// diagram without branches and returns the note that says why.
+pub fn overlay_branches<M: Model>(base: M::Params, diagram: &mut OrbitDiagram) -> Option<String> {
+    let values: Vec<f64> = diagram.up.iter().map(|c| c.value).collect();
+    let (Some(&a), Some(&b)) = (values.first(), values.last()) else {
+        return None;
+    };
+    let (from, to) = (a.min(b), a.max(b));
+    match sweep::<M>(
+        base,
+        &diagram.param,
+        from,
+        to,
+        values.len(),
+        SweepOptions::default(),
+    ) {
+        Ok(sw) => {
+            diagram.branches = branch_sections::<M>(base, &sw);
+            None
+        }
+        Err(e) => Some(format!("note: no branches drawn: the sweep failed: {e}")),
+    }
 }

@@ -1,0 +1,102 @@
+"""Type stubs of the extension module ``stickslip._native`` (Rust, PyO3).
+
+Every function takes the model by name and the parameters as ``(name,
+value)`` pairs, and returns what the CLI prints with ``--json`` (as text);
+the pure-Python package wraps it. Failures raise ``stickslip.errors`` types.
+"""
+
+from typing import List, Optional, Sequence, Tuple
+
+Pairs = Sequence[Tuple[str, float]]
+Columns = Tuple[List[float], List[float], List[float], List[float], List[float], List[float], List[int]]
+
+def models() -> List[str]: ...
+def params(model: str) -> List[Tuple[str, float, List[Tuple[str, float]], str, bool]]: ...
+def describe(model: str, set: Pairs) -> Tuple[str, str]: ...
+def check(path: str) -> str: ...
+
+class Trajectory:
+    def history(self, periods: int = 1, samples: int = 400) -> Optional[Columns]: ...
+    def title(self) -> str: ...
+
+def simulate(
+    model: str, set: Pairs, start: Tuple[float, float, float], periods: Optional[int] = None
+) -> Tuple[str, Optional[str], List[str], Trajectory]: ...
+def orbit(
+    model: str,
+    set: Pairs,
+    structure: str,
+    periods: int = 1,
+    guess: Optional[Tuple[float, float]] = None,
+) -> Tuple[str, Optional[str], List[str], Trajectory]: ...
+def sweep(
+    model: str,
+    set: Pairs,
+    name: str,
+    values: Sequence[float],
+    starts: Optional[int] = None,
+    every: Optional[int] = None,
+    unstable: bool = True,
+) -> str: ...
+def orbit_diagram(
+    model: str,
+    set: Pairs,
+    name: str,
+    from_: float,
+    to: float,
+    count: int,
+    transient: Optional[int] = None,
+    periods: Optional[int] = None,
+    lyapunov: Optional[int] = None,
+    branches: bool = True,
+) -> Tuple[str, List[str]]: ...
+
+# The analyses over two parameters and over starts (`python/src/study/`).
+Axis = Tuple[str, float, float, int]
+
+def map(
+    model: str,
+    set: Pairs,
+    x: Axis,
+    y: Axis,
+    out: str,
+    method: str = "continuation",
+    resume: bool = False,
+    progress: bool = True,
+) -> Tuple[str, List[str]]:
+    """The map as JSON (``Map.to_dict()`` without ``file``), and each point's label."""
+    ...
+def curves(
+    model: str,
+    set: Pairs,
+    x: Tuple[str, float, float],
+    y: Tuple[str, float, float],
+    seeds: Pairs = ...,
+    at: Pairs = ...,
+    count: Optional[int] = None,
+    spread: Optional[int] = None,
+) -> str: ...
+def lyapunov(
+    model: str,
+    set: Pairs,
+    start: Tuple[float, float, float],
+    transient: Optional[int] = None,
+    periods: Optional[int] = None,
+) -> str: ...
+def basins(
+    model: str,
+    set: Pairs,
+    x: Tuple[float, float, int],
+    v: Tuple[float, float, int],
+    out: str,
+    phase: float = 0.0,
+    samples: int = 1000,
+    seed: int = 1,
+    periods: Optional[int] = None,
+    lyapunov: Optional[int] = None,
+    resume: bool = False,
+    progress: bool = True,
+) -> Tuple[str, List[float], List[float], List[int], List[float]]:
+    """The JSON of ``basins --json``; every start in index order: x, v, the
+    attractor's position in the JSON's list, the exponent (NaN: none)."""
+    ...
