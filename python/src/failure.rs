@@ -5,8 +5,8 @@
 use pyo3::prelude::*;
 use stickslip::dynamics::simulate::SimError;
 use stickslip::models::UnknownModel;
-use stickslip::orbit::motion::OrbitError;
 use stickslip::orbit::lyapunov::LyapunovError;
+use stickslip::orbit::motion::OrbitError;
 use stickslip::study::basins::BasinsError;
 use stickslip::study::curves::CurvesError;
 use stickslip::study::map::{AxisError, MapError};

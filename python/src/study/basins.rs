@@ -62,7 +62,10 @@ impl Command for Basins<'_> {
                 .position(|a| a.name == name)
                 .map(|k| k as u32)
                 .ok_or_else(|| {
-                    Failure::new(Kind::Input, format!("attractor `{name}` is not in the summary"))
+                    Failure::new(
+                        Kind::Input,
+                        format!("attractor `{name}` is not in the summary"),
+                    )
                 })
         };
         let mut a: Answer = (json, Vec::new(), Vec::new(), Vec::new(), Vec::new());
