@@ -54,6 +54,8 @@ pub mod lowered;
 #[allow(missing_docs)]
 pub mod model;
 #[cfg(feature = "generator")]
+pub mod model_files;
+#[cfg(feature = "generator")]
 pub mod names;
 #[cfg(feature = "generator")]
 #[allow(missing_docs)]
