@@ -2,7 +2,8 @@
 # The Python package, as a user installs it: `pip install ./python` into a
 # fresh virtual environment (maturin builds the abi3 wheel with every
 # compiled-in model), its pytest suite against the CLI's JSON, and the
-# notebook examples/paper.ipynb executed headless.
+# notebook examples/paper.ipynb executed headless; then user models compiled
+# in at install time (python/tests/user_models.sh).
 #
 # Needs python3 (>= 3.9) with venv, PyPI, and the release CLI
 # (`cargo build --release`), which the tests compare with.
@@ -42,3 +43,6 @@ assert not errors, errors
 print(f"   {sum(c.cell_type == 'code' for c in nb.cells)} code cells ran")
 PY
 echo "   in $((SECONDS - start)) s"
+
+echo "-- user models: STICKSLIP_MODELS=dir pip install ./python"
+bash python/tests/user_models.sh
