@@ -23,7 +23,12 @@ fn main() {
     let user = std::env::var_os(USER_MODELS);
     // The one entry point of build.rs, `model!(file = ...)` and `stickslip
     // check` is `check_file`: the same file gets the same report from all three.
-    let files = model_files::list(&manifest.join("models"), "models", user.as_deref(), &manifest);
+    let files = model_files::list(
+        &manifest.join("models"),
+        "models",
+        user.as_deref(),
+        &manifest,
+    );
     for path in files.watched() {
         println!("cargo:rerun-if-changed={}", path.display());
     }

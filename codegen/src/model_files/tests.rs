@@ -22,10 +22,8 @@ impl Temp {
     fn new() -> Temp {
         static NEXT: AtomicUsize = AtomicUsize::new(0);
         let n = NEXT.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!(
-            "stickslip-model-files-{}-{n}",
-            std::process::id()
-        ));
+        let dir =
+            std::env::temp_dir().join(format!("stickslip-model-files-{}-{n}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).expect("create a temporary folder");
         Temp(dir)
@@ -97,7 +95,11 @@ fn built_in_then_each_user_folder_in_order_by_name() {
         .iter()
         .map(|f| (f.origin.as_str(), f.built_in))
         .collect();
-    let (c, d, z) = (origin(&two, "c.ssm"), origin(&two, "d.ssm"), origin(&one, "z.ssm"));
+    let (c, d, z) = (
+        origin(&two, "c.ssm"),
+        origin(&two, "d.ssm"),
+        origin(&one, "z.ssm"),
+    );
     assert_eq!(
         got,
         vec![
@@ -116,7 +118,11 @@ fn built_in_then_each_user_folder_in_order_by_name() {
         assert!(watched.contains(&p.as_path()), "{p:?} not watched");
     }
     for f in &files.files {
-        assert!(watched.contains(&f.path.as_path()), "{:?} not watched", f.path);
+        assert!(
+            watched.contains(&f.path.as_path()),
+            "{:?} not watched",
+            f.path
+        );
     }
     // Unset or empty: the built-in models alone.
     for user in [None, Some(OsString::new())] {
@@ -133,7 +139,10 @@ fn a_relative_folder_is_read_from_base_and_named_as_given() {
     t.folder("mine", &[("s.ssm", b"x")]);
     let files = list(&models, "models", Some(OsStr::new("mine")), &t.0);
     assert!(files.errors.is_empty());
-    assert_eq!(files.files[1].origin, format!("mine{}s.ssm", std::path::MAIN_SEPARATOR));
+    assert_eq!(
+        files.files[1].origin,
+        format!("mine{}s.ssm", std::path::MAIN_SEPARATOR)
+    );
     assert_eq!(files.files[1].path, t.0.join("mine").join("s.ssm"));
 }
 
@@ -143,7 +152,12 @@ fn a_folder_given_twice_or_the_built_in_folder_is_read_once() {
     let models = t.folder("models", &[("a.ssm", model("a").as_bytes())]);
     let mine = t.folder("mine", &[("s.ssm", model("s").as_bytes())]);
     let again = t.0.join("mine").join("..").join("mine");
-    let files = list(&models, "models", Some(&var(&[&mine, &again, &models])), &t.0);
+    let files = list(
+        &models,
+        "models",
+        Some(&var(&[&mine, &again, &models])),
+        &t.0,
+    );
     assert!(files.errors.is_empty(), "{:?}", files.errors);
     assert_eq!(files.files.len(), 2);
     let generated = generate(&files).expect("no clash with itself");
@@ -162,7 +176,10 @@ fn a_missing_folder_is_an_error_naming_it() {
     assert_eq!(at, None);
     assert_eq!(
         message,
-        format!("STICKSLIP_MODELS: the folder `{}` does not exist", gone.display())
+        format!(
+            "STICKSLIP_MODELS: the folder `{}` does not exist",
+            gone.display()
+        )
     );
     // Relative: where it was looked for is said.
     let files = list(&models, "models", Some(OsStr::new("gone")), &t.0);
@@ -234,7 +251,10 @@ fn a_folder_without_model_files_is_an_error_saying_what_it_holds() {
     let errors = generate(&files).expect_err("nothing silently built");
     assert_eq!(errors.len(), 2);
     let text = render(&errors, &files);
-    assert!(text.contains(&format!("1 error in {}\n", empty.display())), "{text}");
+    assert!(
+        text.contains(&format!("1 error in {}\n", empty.display())),
+        "{text}"
+    );
     assert!(text.ends_with(&format!(
         "stickslip: invalid model file(s) in {}, {}, {}\n",
         models.display(),
@@ -340,12 +360,18 @@ fn errors_of_a_user_model_are_located_in_the_user_file() {
     let errors = generate(&files).expect_err("a misnamed model");
     assert_eq!(errors.len(), 1);
     let (message, at) = only(&errors[0]);
-    assert!(message.starts_with("the model is named `other`"), "{message}");
+    assert!(
+        message.starts_with("the model is named `other`"),
+        "{message}"
+    );
     let (line, col) = find(&text, "model other");
     assert_eq!(at, Some((line, col + 6)));
     let rendered = render(&errors, &files);
     let user = origin(&mine, "spring.ssm");
-    assert!(rendered.contains(&format!("--> {user}:{line}:{}", col + 6)), "{rendered}");
+    assert!(
+        rendered.contains(&format!("--> {user}:{line}:{}", col + 6)),
+        "{rendered}"
+    );
 }
 
 #[test]
@@ -367,7 +393,10 @@ fn a_user_file_that_is_not_utf8_is_located_at_the_bad_byte() {
     let errors = generate(&files).expect_err("not UTF-8");
     assert_eq!(errors[0].file, origin(&mine, "spring.ssm"));
     let (message, at) = only(&errors[0]);
-    assert!(message.contains("not valid UTF-8 at byte 0xFF"), "{message}");
+    assert!(
+        message.contains("not valid UTF-8 at byte 0xFF"),
+        "{message}"
+    );
     assert_eq!(at, Some((3, 5)));
 }
 
@@ -385,7 +414,10 @@ fn an_unreadable_user_file_is_an_error_naming_it() {
     let (message, at) = only(&errors[0]);
     assert_eq!(errors[0].file, origin(&mine, "spring.ssm"));
     assert!(
-        message.starts_with(&format!("cannot read {}", mine.join("spring.ssm").display())),
+        message.starts_with(&format!(
+            "cannot read {}",
+            mine.join("spring.ssm").display()
+        )),
         "{message}"
     );
     assert_eq!(at, None);
