@@ -7,8 +7,10 @@
 #
 # Usage: bash benches/python-overhead.sh   (builds the wheel into a throwaway
 # venv, release profile; then `cargo bench --bench python_call`).
-# Python: timeit, best of 7 repeats of a batch sized to >= 0.2 s, per call.
-# Rust: criterion's estimate per iteration (bencher format).
+# Both sides give the best and the median batch, per call. Python: timeit,
+# 15 repeats of a batch sized to >= 0.2 s. Rust: criterion's 15 samples,
+# flat sampling (equal batches of about 0.2 s), read from
+# target/criterion/python_call/*/new/sample.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -39,28 +41,37 @@ calls = {
 for name, call in calls.items():
     t = timeit.Timer(call)
     number, _ = t.autorange()
-    best = min(t.repeat(repeat=7, number=number)) / number
-    print(name, best)
+    times = sorted(x / number for x in t.repeat(repeat=15, number=number))
+    print(name, times[0], times[len(times) // 2])
 PY
 cat "$tmp/python.txt"
 
 echo "== Rust (cargo bench --bench python_call)"
 cargo bench --bench python_call -- --output-format bencher | tee "$tmp/rust.txt"
 
-"$py" - "$tmp/python.txt" "$tmp/rust.txt" <<'PY'
-import re
+"$py" - "$tmp/python.txt" target/criterion/python_call <<'PY'
+import json
+import statistics
 import sys
 
-py = dict((l.split()[0], float(l.split()[1])) for l in open(sys.argv[1]) if l.strip())
-rust = {}
-for line in open(sys.argv[2]):
-    m = re.match(r"test python_call/(\S+)\s+\.\.\. bench:\s+([\d,]+) ns/iter", line)
-    if m:
-        rust[m.group(1)] = float(m.group(2).replace(",", "")) * 1e-9
+py = {}
+for line in open(sys.argv[1]):
+    if line.strip():
+        name, best, median = line.split()
+        py[name] = (float(best), float(median))
+
+
+def criterion(bench):
+    d = json.load(open(f"{sys.argv[2]}/{bench}/new/sample.json"))
+    per = [t * 1e-9 / n for t, n in zip(d["times"], d["iters"])]
+    return min(per), statistics.median(per)
+
+
+sim, hist = criterion("simulate_w5"), criterion("history_w5")
 rust_of = {
-    "simulate": rust["simulate_w5"],
-    "history": rust["history_w5"],
-    "simulate+history": rust["simulate_w5"] + rust["history_w5"],
+    "simulate": sim,
+    "history": hist,
+    "simulate+history": (sim[0] + hist[0], sim[1] + hist[1]),
 }
 calls = {
     "simulate": "m.simulate(W=5, Q0=70)",
@@ -75,13 +86,13 @@ def fmt(s):
 
 
 print()
-print("| call (Python) | Python | Rust (same work) | Python / Rust | overhead |")
-print("|---|---:|---:|---:|---:|")
+print("| call (Python) | Python best | Rust best (same work) | Python / Rust | overhead (best) | Python / Rust (medians) |")
+print("|---|---:|---:|---:|---:|---:|")
 for k, text in calls.items():
-    p = py[k]
+    (p, pm) = py[k]
     if k in rust_of:
-        r = rust_of[k]
-        print(f"| `{text}` | {fmt(p)} | {fmt(r)} | {p / r:.3f} | {fmt(p - r)} |")
+        (r, rm) = rust_of[k]
+        print(f"| `{text}` | {fmt(p)} | {fmt(r)} | {p / r:.3f} | {fmt(p - r)} | {pm / rm:.3f} |")
     else:
-        print(f"| `{text}` | {fmt(p)} | — | — | {fmt(p)} |")
+        print(f"| `{text}` | {fmt(p)} | — | — | {fmt(p)} | — |")
 PY

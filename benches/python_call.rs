@@ -11,7 +11,7 @@
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models;
 use stickslip::orbit::attractor::AttractorOptions;
@@ -103,7 +103,12 @@ fn benches(c: &mut Criterion) {
     assert!(columns(&sim, &settled, 400).0.len() >= 400);
 
     let mut g = c.benchmark_group("python_call");
-    g.measurement_time(Duration::from_secs(5));
+    // Timed as Python's timeit is in python-overhead.sh: 15 batches of equal
+    // size, about 0.2 s each.
+    g.sampling_mode(SamplingMode::Flat);
+    g.sample_size(15);
+    g.warm_up_time(Duration::from_secs(1));
+    g.measurement_time(Duration::from_secs(3));
     g.bench_function("simulate_w5", |b| b.iter(|| run("paper")));
     g.bench_function("history_w5", |b| {
         b.iter(|| columns(black_box(&sim), black_box(&settled), black_box(400)))
