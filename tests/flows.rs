@@ -107,3 +107,46 @@ fn stick_forces_follow_the_force_criteria() {
     }
     assert!((Paper::static_bound(&p).expect("stick") - 4.9).abs() < 1e-12);
 }
+
+/// The event search's evaluation of a segment (`dynamics::response`: the
+/// forced response at the start computed once) is the generated flow and
+/// normal field, to rounding, in every damping regime.
+#[test]
+fn the_event_searchs_response_is_the_generated_flow() {
+    use stickslip::dynamics::response::Response;
+    let mut r = rng(17);
+    let mut checked = 0;
+    for j in 0..Paper::INFO.domains.len() {
+        for n in 0..400 {
+            let target = TARGETS[n % TARGETS.len()];
+            let p = params_for(&mut r, j, target);
+            let (x0, v0) = (r.gen_range(-3.0..3.0), r.gen_range(-2.0..6.0));
+            let phi0 = r.gen_range(0.0..1e3);
+            let co = Paper::coefficients(&p, j);
+            let osc = Paper::oscillator(&p);
+            let Some(resp) = Response::new(co, osc, x0, v0, phi0) else {
+                panic!("domain {j} {target:?}: no response at {p:?}");
+            };
+            for _ in 0..4 {
+                let phi = phi0 + r.gen_range(0.0..10.0);
+                let [x, v] = Paper::flow(&p, j, x0, v0, phi0, phi);
+                let [a, da] = Paper::normal_field(&p, j, x, v, phi);
+                let s = resp.at(phi);
+                let scale = 1.0 + x.abs() + v.abs() + (osc.amplitude + co.b.abs()) / co.c;
+                for (name, got, want, sc) in [
+                    ("x", s.x, x, scale),
+                    ("v", s.v, v, scale * osc.frequency),
+                    ("a", s.a, a, scale * (co.c + co.two_d.abs() + 1.0)),
+                    ("a'", s.da, da, scale * (co.c + co.two_d.abs() + 1.0).powi(2)),
+                ] {
+                    assert!(
+                        (got - want).abs() <= 1e-12 * sc,
+                        "domain {j} {target:?}: {name} = {got}, generated {want} (params {p:?})"
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 4 * 400 * Paper::INFO.domains.len());
+}

@@ -277,17 +277,16 @@ fn tangency(
 ) -> Option<Root> {
     let pb = probe(a + delta);
     let at = if (pa.dh > 0.0) != (pb.dh > 0.0) {
-        // Bisect the sign change of the slope.
-        let (mut lo, mut hi) = (a, a + delta);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if (probe(mid).dh > 0.0) == (pa.dh > 0.0) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
+        // The sign change of the slope, by safeguarded Newton on `h'`.
+        bracketed_newton(
+            |phi| {
+                let p = probe(phi);
+                (p.dh, p.ddh)
+            },
+            a,
+            a + delta,
+            pa.dh > 0.0,
+        )
     } else if pa.dh.abs() <= slope_tol * 1e-3 {
         a
     } else {
@@ -343,29 +342,49 @@ pub fn touch_extremum(probe: &impl Fn(f64) -> Probe, phase: f64, inside: f64, ho
 }
 
 /// Safeguarded Newton between `a` and `b`, where function `k` changes sign.
-fn polish(probe: &impl Fn(f64) -> Probe, k: usize, mut a: f64, mut b: f64, ha: f64) -> f64 {
-    let sign_a = ha > 0.0;
+fn polish(probe: &impl Fn(f64) -> Probe, k: usize, a: f64, b: f64, ha: f64) -> f64 {
+    bracketed_newton(
+        |phi| {
+            let p = probe(phi);
+            (p.h[k], p.dh)
+        },
+        a,
+        b,
+        ha > 0.0,
+    )
+}
+
+/// The root of `f` between `a` and `b`, where it changes sign (`sign_a`: `f(a) > 0`),
+/// to the rounding of the phase: Newton's step where it stays inside the
+/// bracket, bisection where it does not. `eval` gives `(f, f')`.
+fn bracketed_newton(eval: impl Fn(f64) -> (f64, f64), mut a: f64, mut b: f64, sign_a: bool) -> f64 {
     let mut x = 0.5 * (a + b);
     for _ in 0..100 {
-        let p = probe(x);
-        let h = p.h[k];
-        if h == 0.0 {
+        let (f, df) = eval(x);
+        if f == 0.0 {
             return x;
         }
-        if (h > 0.0) == sign_a {
+        if (f > 0.0) == sign_a {
             a = x;
         } else {
             b = x;
         }
-        let newton = x - h / p.dh;
-        let next = if p.dh != 0.0 && newton > a && newton < b {
+        let newton = x - f / df;
+        let resolution = 4.0 * f64::EPSILON * x.abs().max(1.0);
+        // A Newton correction below the rounding of the phase: `x` is the
+        // root to the phase's resolution. (Without this test such a step,
+        // which rounds to `x` and so lands on the bracket's end, was taken
+        // for a failed one, and bisection then halved the bracket some forty
+        // times more: most of the simulation's time went there.)
+        if df != 0.0 && (newton - x).abs() <= resolution {
+            return x;
+        }
+        let next = if df != 0.0 && newton > a && newton < b {
             newton
         } else {
             0.5 * (a + b)
         };
-        if (next - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0)
-            || b - a <= 4.0 * f64::EPSILON * x.abs().max(1.0)
-        {
+        if (next - x).abs() <= resolution || b - a <= resolution {
             return next;
         }
         x = next;
@@ -442,6 +461,33 @@ mod tests {
         // Past the turn, or beyond the horizon: where it is asked.
         assert_eq!(touch_extremum(&p, 2.0, -1.0, 1.0), 2.0);
         assert_eq!(touch_extremum(&p, 0.0, -1.0, 1.0), 0.0);
+    }
+
+    #[test]
+    fn a_root_at_a_large_phase_is_polished_in_a_few_probes() {
+        // At phase ~500 Newton's last correction is below half an ulp of the
+        // phase: it rounds to the iterate, which is the bracket's end. It
+        // used to be taken for a step outside the bracket, and some forty
+        // bisections followed. The root of 3 (φ − 500) − 1 is not a float.
+        let count = std::cell::Cell::new(0u32);
+        let p = |phi: f64| {
+            count.set(count.get() + 1);
+            Probe {
+                h: [3.0 * (phi - 500.0) - 1.0, f64::INFINITY],
+                dh: 3.0,
+                ddh: 0.0,
+            }
+        };
+        let root = 1501.0 / 3.0;
+        let at = polish(&p, 0, 499.9, 500.9, p(499.9).h[0]);
+        assert!((at - root).abs() < 1e-12, "{at}");
+        assert!(count.get() <= 5, "{} probes", count.get());
+        // And the whole search.
+        count.set(0);
+        let r = first_root(&p, &|_, _, _| 1.0, 499.0, 502.0, 0.4, 1e-12).unwrap();
+        assert_eq!(r.kind, RootKind::Crossing);
+        assert!((r.phase - root).abs() < 1e-12, "{}", r.phase);
+        assert!(count.get() <= 12, "{} probes", count.get());
     }
 
     #[test]

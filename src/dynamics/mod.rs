@@ -4,6 +4,8 @@
 //!   a crossing (Taylor exclusion with a Grönwall bound);
 //! * [`simulate`] — exact event-driven simulation of a piecewise-linear model
 //!   (flows, crossings, stick, grazing);
+//! * [`response`] — the closed-form motion of one segment, its start's
+//!   forced response computed once (what the event search evaluates);
 //! * [`integrate`] — Dormand–Prince integration of a smooth friction law, with
 //!   belt-speed events and stick by force criteria.
 //!
@@ -11,5 +13,6 @@
 
 pub mod crossing;
 pub mod integrate;
+pub mod response;
 pub mod simulate;
 pub mod tangent;

@@ -16,6 +16,7 @@
 use serde::Serialize;
 
 use crate::dynamics::crossing::{first_root, touch_extremum, Probe, Root, RootKind};
+use crate::dynamics::response::Response;
 use crate::model::param::{ParamError, ParamSet};
 use crate::model::{Coefficients, Model, Oscillator};
 
@@ -402,9 +403,22 @@ impl<M: Model> Simulator<M> {
                 let co = self.coefficients[j];
                 let lo = info.lower.map(|k| self.velocities[k]);
                 let hi = info.upper.map(|k| self.velocities[k]);
+                // The segment's forced response, computed once: each probe is
+                // then one sincos and one homogeneous solution (the generated
+                // flow recomputes the start's response on every call).
+                let response = Response::new(co, self.osc, seg.x, seg.v, seg.phase);
                 let probe = |phi: f64| {
-                    let [x, v] = M::flow(&self.p, j, seg.x, seg.v, seg.phase, phi);
-                    let [a, da] = M::normal_field(&self.p, j, x, v, phi);
+                    let (v, a, da) = match &response {
+                        Some(r) => {
+                            let s = r.at(phi);
+                            (s.v, s.a, s.da)
+                        }
+                        None => {
+                            let [x, v] = M::flow(&self.p, j, seg.x, seg.v, seg.phase, phi);
+                            let [a, da] = M::normal_field(&self.p, j, x, v, phi);
+                            (v, a, da)
+                        }
+                    };
                     Probe {
                         h: [
                             lo.map_or(f64::INFINITY, |l| v - l),

@@ -19,17 +19,29 @@
 /// Below this `|z| = |w2| tau^2` the series is used (11 terms reach 1e-19).
 const SERIES_LIMIT: f64 = 1.0;
 
+/// `1 / ((2k)(2k - 1))` and `1 / ((2k + 1)(2k))` for k = 10, 9, …, 1: the
+/// ratios of consecutive terms, so that Horner's rule multiplies (a chain of
+/// divisions cost more than the exponential and the sine together).
+const RATIOS: [(f64, f64); 10] = {
+    let mut r = [(0.0, 0.0); 10];
+    let mut i = 0;
+    while i < 10 {
+        let k = (10 - i) as f64;
+        r[i] = (1.0 / ((2.0 * k) * (2.0 * k - 1.0)), 1.0 / ((2.0 * k + 1.0) * (2.0 * k)));
+        i += 1;
+    }
+    r
+};
+
 /// `(sum z^k / (2k)!, sum z^k / (2k+1)!)`, i.e. `(cosh sqrt z, sinh sqrt z / sqrt z)`, for `|z| <= 1`.
 #[inline]
 fn series(z: f64) -> (f64, f64) {
     // Horner from the highest kept term (k = 10).
     let mut c = 1.0;
     let mut s = 1.0;
-    let mut k = 10.0f64;
-    while k > 0.5 {
-        c = 1.0 + z * c / ((2.0 * k) * (2.0 * k - 1.0));
-        s = 1.0 + z * s / ((2.0 * k + 1.0) * (2.0 * k));
-        k -= 1.0;
+    for (rc, rs) in RATIOS {
+        c = 1.0 + z * c * rc;
+        s = 1.0 + z * s * rs;
     }
     (c, s)
 }
