@@ -19,38 +19,21 @@
 //! is halved. The bounds hold in every damping regime (they use the ODE, not
 //! the form of its solution).
 
-use crate::model::homogeneous;
+use crate::dynamics::response::Response;
 use crate::model::{Coefficients, Oscillator};
 
 /// State and acceleration of the flow at one phase.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct FlowState {
-    /// Displacement.
-    pub x: f64,
-    /// Velocity.
-    pub v: f64,
-    /// Acceleration `v'` (per unit time).
-    pub a: f64,
-    /// Its rate `a'` (per unit time).
-    pub da: f64,
-}
+pub(crate) type FlowState = crate::dynamics::response::State;
 
-/// The closed-form flow of one domain from `(x0, v0)` at phase `phi0`, with
-/// everything that does not depend on the phase computed once.
+/// The closed-form flow of one domain from `(x0, v0)` at phase `phi0`
+/// ([`Response`]: everything that does not depend on the phase computed
+/// once), with the constants of the bounds.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SegmentFlow {
+    response: Response,
     w: f64,
-    a0: f64,
-    b: f64,
     two_d: f64,
-    d: f64,
     c: f64,
-    fa: f64,
-    fb: f64,
-    fc: f64,
-    phi0: f64,
-    hx: f64,
-    hv: f64,
     omega: f64,
     rate: f64,
     forcing: f64,
@@ -65,60 +48,35 @@ impl SegmentFlow {
     /// `phi0`; `None` where the closed form does not apply (`c_j = 0`) or a
     /// coefficient is not finite.
     pub fn new(osc: Oscillator, co: Coefficients, x0: f64, v0: f64, phi0: f64) -> Option<Self> {
-        let (w, a0) = (osc.frequency, osc.amplitude);
-        let k = co.c - w * w;
-        let dw = co.two_d * w;
-        let den = k * k + dw * dw;
-        let (fa, fb, fc) = (a0 * k / den, a0 * dw / den, -co.b / co.c);
-        let (s0, c0) = phi0.sin_cos();
-        let hx = x0 - (fa * c0 + fb * s0 + fc);
-        let hv = v0 - w * (fb * c0 - fa * s0);
+        let w = osc.frequency;
         let omega = match co.c.abs().sqrt() {
             o if o > 0.0 => o,
             _ => 1.0,
         };
-        let flow = Self {
+        let rate = omega.max(co.c.abs() / omega + co.two_d.abs());
+        let forcing = osc.amplitude.abs() * w * w;
+        let response = Response::new(co, osc, x0, v0, phi0)?;
+        (rate.is_finite() && forcing.is_finite() && w > 0.0).then_some(Self {
+            response,
             w,
-            a0,
-            b: co.b,
             two_d: co.two_d,
-            d: 0.5 * co.two_d,
             c: co.c,
-            fa,
-            fb,
-            fc,
-            phi0,
-            hx,
-            hv,
             omega,
-            rate: omega.max(co.c.abs() / omega + co.two_d.abs()),
-            forcing: a0.abs() * w * w,
-        };
-        let finite = [fa, fb, fc, hx, hv, flow.rate, flow.forcing, w]
-            .iter()
-            .all(|v| v.is_finite());
-        (finite && co.c != 0.0 && w > 0.0).then_some(flow)
+            rate,
+            forcing,
+        })
     }
 
     /// The state at phase `phi`.
     #[inline]
     pub fn at(&self, phi: f64) -> FlowState {
-        let tau = (phi - self.phi0) / self.w;
-        let (ec, es) = homogeneous::general(self.d, self.c, tau);
-        let (s, co) = phi.sin_cos();
-        let x =
-            self.fa * co + self.fb * s + self.fc + ec * self.hx + es * (self.hv + self.d * self.hx);
-        let v = self.w * (self.fb * co - self.fa * s) + ec * self.hv
-            - es * (self.c * self.hx + self.d * self.hv);
-        let a = self.a0 * co - self.b - self.two_d * v - self.c * x;
-        let da = -self.a0 * self.w * s - self.two_d * a - self.c * v;
-        FlowState { x, v, a, da }
+        self.response.at(phi)
     }
 
     /// The size of the terms that make up the acceleration at `s` (what
     /// its rounding is relative to).
     pub fn acceleration_scale(&self, s: &FlowState) -> f64 {
-        self.a0.abs() + self.b.abs() + (self.c * s.x).abs() + (self.two_d * s.v).abs()
+        self.response.acceleration_scale(s)
     }
 
     /// Every zero of the acceleration on `[lo, hi]` (phases), in increasing
@@ -200,12 +158,19 @@ impl SegmentFlow {
                 hi = t;
             }
             let newton = t - s.a * self.w / s.da;
+            let resolution = 4.0 * f64::EPSILON * t.abs().max(1.0);
+            // Newton's correction below the phase's rounding: `t` is the zero
+            // (such a step rounds to `t`, the bracket's end, and would
+            // otherwise be taken for a failed one and bisected forty times).
+            if s.da != 0.0 && (newton - t).abs() <= resolution {
+                break;
+            }
             let next = if s.da != 0.0 && newton > lo && newton < hi {
                 newton
             } else {
                 0.5 * (lo + hi)
             };
-            let done = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0);
+            let done = (next - t).abs() <= resolution;
             t = next;
             s = self.at(t);
             evals += 1;
