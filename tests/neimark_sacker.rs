@@ -18,6 +18,7 @@ use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;
+use stickslip::output::sweep_table::runs;
 use stickslip::study::sweep::{sweep, Sweep, SweepOptions, TransitionKind};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -173,6 +174,22 @@ fn the_falling_slope_gives_a_neimark_sacker_point_checked_independently() {
     );
     assert!(before.iter().all(|&(_, st)| !st), "{before:?}");
     assert!(after.iter().all(|&(_, st)| st), "{after:?}");
+    // And its branch: unstable up to the point, stable from it to the
+    // period doubling (both located on one continuation step here), then
+    // unstable (text report's stretches).
+    let br = &s.branches[ns.branch];
+    assert_eq!(br.structure, STRUCTURE);
+    let runs: Vec<_> = runs(br, &s.bifurcations)
+        .iter()
+        .map(|r| (r.stable, r.from_kind, r.to_kind))
+        .collect();
+    let want = [
+        (false, None, Some("neimark_sacker")),
+        (true, Some("neimark_sacker"), Some("period_doubling")),
+        (false, Some("period_doubling"), Some("period_doubling")),
+        (true, Some("period_doubling"), None),
+    ];
+    assert_eq!(runs, want, "{br:#?}");
     // Just on the stable side the motion is a motion by simulation: one
     // forcing period from its first switching point, two passes of Σ3,
     // back where it started.
