@@ -434,7 +434,15 @@ impl<M: Model> Continuer<'_, M> {
             if cand.margin.is_nan() || cand.margin <= 0.0 {
                 let s_tol = opts.transition_tolerance / self.sys.span;
                 let g_bad = cand.margin;
-                let (good, _) = self.locate(&prev, s_c, g_bad, s_tol, |s: &Sample| s.margin);
+                let (mut good, _) = self.locate(&prev, s_c, g_bad, s_tol, |s: &Sample| s.margin);
+                // The located end carries the step's tangent (the trials
+                // have none): its own, so that a fold on the truncated step
+                // is told from a branch point by the tangent's turn.
+                let mut t = prev.tangent.clone();
+                if self.sys.tangent(&good.state, &prev.tangent, &mut t).is_ok() {
+                    good.tests = Tests::of(&good.point.dp, t.dl);
+                    good.tangent = t;
+                }
                 let (kind, boundary) = good
                     .worst
                     .or(cand.worst)
