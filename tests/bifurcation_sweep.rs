@@ -327,3 +327,44 @@ fn shaws_pitchfork_gives_two_mirror_image_branches() {
     });
     assert!(!symmetric, "the born branch is symmetric: {:?}", qa.points);
 }
+
+#[test]
+fn a_fold_next_to_a_grazing_is_a_fold_not_a_branch_point() {
+    // The period-2 motion `P_{3_33 4_33}^2` (Q0 = 80, mu3 = 4.4) turns
+    // back at W = 11.0522004, 1e-5 before it grazes Σ1. On this grid the
+    // step across the fold was cut at the grazing, and the cut end kept the
+    // step's tangent: the turn went unseen and the fold was reported as a
+    // branch point whose born branch was the branch itself.
+    let base = Params {
+        Q0: 80.0,
+        mu3: 4.4,
+        ..Params::default()
+    };
+    let s = sweep::<Paper>(base, "W", 11.0, 11.1, 11, SweepOptions::default()).expect("sweep");
+    assert!(
+        s.bifurcations
+            .iter()
+            .all(|b| b.kind != TransitionKind::BranchPoint),
+        "{:#?}",
+        s.bifurcations
+    );
+    let folds: Vec<_> = s
+        .bifurcations
+        .iter()
+        .filter(|b| b.kind == TransitionKind::Fold)
+        .collect();
+    assert_eq!(folds.len(), 1, "{:#?}", s.bifurcations);
+    let f = folds[0];
+    assert!((f.value - 11.0522004).abs() < 1e-6, "{f:#?}");
+    assert!(f.born.is_empty());
+    // The branch turns back there: its neighbours lie on one side.
+    let br = &s.branches[f.branch];
+    let k = br
+        .points
+        .iter()
+        .position(|q| q.value == f.value)
+        .expect("the fold is a point of its branch");
+    assert!(k > 0 && k + 1 < br.points.len(), "{br:#?}");
+    let (a, c) = (br.points[k - 1].value, br.points[k + 1].value);
+    assert!((a - f.value) * (c - f.value) > 0.0, "{a} {} {c}", f.value);
+}

@@ -434,7 +434,15 @@ impl<M: Model> Continuer<'_, M> {
             if cand.margin.is_nan() || cand.margin <= 0.0 {
                 let s_tol = opts.transition_tolerance / self.sys.span;
                 let g_bad = cand.margin;
-                let (good, _) = self.locate(&prev, s_c, g_bad, s_tol, |s: &Sample| s.margin);
+                let (mut good, _) = self.locate(&prev, s_c, g_bad, s_tol, |s: &Sample| s.margin);
+                // The located end carries the step's tangent (the trials
+                // have none): its own, so that a fold on the truncated step
+                // is told from a branch point by the tangent's turn.
+                let mut t = prev.tangent.clone();
+                if self.sys.tangent(&good.state, &prev.tangent, &mut t).is_ok() {
+                    good.tests = Tests::of(&good.point.dp, t.dl);
+                    good.tangent = t;
+                }
                 let (kind, boundary) = good
                     .worst
                     .or(cand.worst)
@@ -447,7 +455,26 @@ impl<M: Model> Continuer<'_, M> {
             }
             // Eigenvalue bifurcations on the step.
             if s_c > 0.0 {
+                let mut before: Option<Sample> = None;
                 for (at, kind) in self.bifurcations(&prev, &cand, s_c) {
+                    // Two bifurcations on one step (a Neimark–Sacker point
+                    // and a period doubling near a 1:2 resonance): a point
+                    // between them, so that the stretch between has a point
+                    // of its own stability (the located points lie on the
+                    // unit circle, their stability is round-off).
+                    if let Some(b) = &before {
+                        let sb = self.sys.dot_diff(&prev.tangent, &b.state, &prev.state);
+                        let sa = self.sys.dot_diff(&prev.tangent, &at.state, &prev.state);
+                        let mid = self
+                            .corrected(&prev, 0.5 * (sa + sb), 4 * opts.newton.max_iterations)
+                            .and_then(|(x, _)| self.examine(x, prev.tangent.clone()));
+                        if let Ok(m) = mid {
+                            if m.margin > 0.0 {
+                                points.push(m.point);
+                            }
+                        }
+                    }
+                    before = Some(at.clone());
                     let eigenvalue = detect::critical(kind, &at.point.stability);
                     points.push(at.point.clone());
                     bifs.push(Bifurcation {

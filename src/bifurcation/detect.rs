@@ -5,7 +5,19 @@
 //! * `ψ_+1 = det(I − DP)`: zero iff `DP` has the eigenvalue `+1`;
 //! * `ψ_−1 = det(I + DP)`: zero iff `DP` has the eigenvalue `−1`;
 //! * `ψ_NS = det DP − 1`: zero on a complex pair on the unit circle (when
-//!   the eigenvalues are complex at both ends of the step).
+//!   the eigenvalues are complex at one end of the step at least, and at
+//!   the located zero).
+//!
+//! A Neimark–Sacker point need not have complex eigenvalues at both ends
+//! of a step: near a 1:2 (or 1:1) resonance the pair crosses the circle
+//! and then meets on the real axis within one step, and a step from a
+//! complex pair outside the circle to a real pair inside it has crossed
+//! the circle as a complex pair (neither `ψ_±1` changes sign: no real
+//! eigenvalue crossed). With real eigenvalues at both ends `det DP = 1`
+//! within the step is no crossing of the circle by a pair. The zero
+//! located is accepted only if the pair is complex there and on the circle
+//! ([`is_critical`]): a zero of `det DP − 1` on a real pair (one eigenvalue
+//! inside, one outside) is none.
 //!
 //! `ψ_+1` changing sign is a fold when `t_λ` changes sign with it (the
 //! branch turns back), else a branch point (the branch goes on through it
@@ -92,7 +104,7 @@ pub(crate) fn crossings(a: &Tests, b: &Tests) -> Vec<(TransitionKind, Psi)> {
     if changes(a.minus, b.minus) {
         out.push((TransitionKind::PeriodDoubling, Psi::Minus));
     }
-    if a.complex && b.complex && changes(a.ns, b.ns) {
+    if (a.complex || b.complex) && changes(a.ns, b.ns) {
         out.push((TransitionKind::NeimarkSacker, Psi::Ns));
     }
     out
@@ -127,6 +139,8 @@ pub(crate) fn is_critical(kind: TransitionKind, s: &Stability) -> bool {
     let e = critical(kind, s);
     let miss = match kind {
         TransitionKind::PeriodDoubling => (e[0] + 1.0).hypot(e[1]),
+        // A real pair with det DP = 1 is no Neimark–Sacker point.
+        TransitionKind::NeimarkSacker if s.eigenvalues[0][1] == 0.0 => f64::INFINITY,
         TransitionKind::NeimarkSacker => (e[0].hypot(e[1]) - 1.0).abs(),
         _ => (e[0] - 1.0).hypot(e[1]),
     };
@@ -148,4 +162,33 @@ pub(crate) fn critical(kind: TransitionKind, s: &Stability) -> [f64; 2] {
         s.eigenvalues[1]
     };
     [e[0], e[1].abs()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dp(re: f64, im: f64) -> Matrix2<f64> {
+        // A rotation-dilation: the eigenvalues re ± i im.
+        Matrix2::new(re, -im, im, re)
+    }
+
+    /// A complex pair leaving the unit circle within a step whose end has
+    /// real eigenvalues (they met on the real axis after the crossing) is a
+    /// Neimark–Sacker crossing; real pairs at both ends are none.
+    #[test]
+    fn a_pair_crossing_the_circle_is_seen_from_one_complex_end() {
+        let inside = Tests::of(&dp(-0.99, 0.05), 1.0);
+        let outside = Tests::of(&dp(-0.99, 0.2), 1.0);
+        let real_inside = Tests::of(&Matrix2::new(-0.995, 0.0, 0.0, -0.98), 1.0);
+        let real_across = Tests::of(&Matrix2::new(0.5, 0.0, 0.0, 3.0), 1.0);
+        let ns = |a: &Tests, b: &Tests| {
+            crossings(a, b)
+                .iter()
+                .any(|&(k, _)| k == TransitionKind::NeimarkSacker)
+        };
+        assert!(ns(&outside, &inside) && ns(&inside, &outside));
+        assert!(ns(&outside, &real_inside) && ns(&real_inside, &outside));
+        assert!(!ns(&real_inside, &real_across));
+    }
 }

@@ -341,16 +341,38 @@ fn sample(value: f64, points: &[SwitchingPoint], st: &Stability) -> BranchSample
     }
 }
 
+/// The samples of a branch. A point where a bifurcation is located has its
+/// critical eigenvalue on the unit circle, so its own stability is
+/// round-off: it takes that of the point before it in arclength order (of
+/// the point after it for the first point of a branch born at a
+/// bifurcation), and a stretch of one stability then ends at the
+/// bifurcation.
+fn branch_samples(b: &Branch) -> Vec<BranchSample> {
+    let mut out: Vec<BranchSample> = b
+        .points
+        .iter()
+        .map(|q| sample(q.value, &q.points, &q.stability))
+        .collect();
+    let mut critical: Vec<usize> = b.bifurcations.iter().map(|f| f.index).collect();
+    critical.sort_unstable();
+    for k in critical {
+        if k > 0 && k < out.len() {
+            out[k].stable = out[k - 1].stable;
+        }
+    }
+    // Born at a bifurcation: one end, and the first point is the birth point.
+    if b.ends.len() == 1 && out.len() > 1 {
+        out[0].stable = out[1].stable;
+    }
+    out
+}
+
 fn branch_summary<M: Model>(id: usize, b: &Branch) -> BranchSummary {
     BranchSummary {
         id,
         structure: b.structure.notation(M::INFO),
         n: b.structure.periods(),
-        points: b
-            .points
-            .iter()
-            .map(|q| sample(q.value, &q.points, &q.stability))
-            .collect(),
+        points: branch_samples(b),
         ends: b
             .ends
             .iter()
