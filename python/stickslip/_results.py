@@ -48,6 +48,8 @@ class History(Result):
     COLUMNS = ("t", "Wt", "x", "v", "a", "F", "domain")
 
     def __init__(self, columns: tuple) -> None:
+        # numpy arrays from the extension (moved from Rust, not copied);
+        # ``np.asarray`` keeps them as they are.
         t, wt, x, v, a, f, domain = columns
         self.t = np.asarray(t, dtype=float)
         self.Wt = np.asarray(wt, dtype=float)
@@ -56,7 +58,14 @@ class History(Result):
         self.a = np.asarray(a, dtype=float)
         self.F = np.asarray(f, dtype=float)
         self.domain = np.asarray(domain, dtype=np.int64)
-        super().__init__({c: getattr(self, c).tolist() for c in self.COLUMNS})
+        self._dict: Optional[Dict[str, Any]] = None
+
+    @property
+    def _data(self) -> Dict[str, Any]:  # type: ignore[override]
+        # The lists of ``to_dict()``, made on first use only.
+        if self._dict is None:
+            self._dict = {c: getattr(self, c).tolist() for c in self.COLUMNS}
+        return self._dict
 
     def __len__(self) -> int:
         return len(self.t)
