@@ -67,6 +67,11 @@ class History(Result):
             self._dict = {c: getattr(self, c).tolist() for c in self.COLUMNS}
         return self._dict
 
+    def to_dict(self) -> Dict[str, Any]:
+        """The columns as lists of Python numbers, as the CLI's JSON gives
+        them (new lists each call: ``tolist()`` copies, no deep copy needed)."""
+        return {c: getattr(self, c).tolist() for c in self.COLUMNS}
+
     def __len__(self) -> int:
         return len(self.t)
 
