@@ -42,7 +42,7 @@ type Columns = (
     Vec<f64>,
     Vec<f64>,
     Vec<f64>,
-    Vec<u32>,
+    Vec<i64>,
 );
 
 fn columns<M: Model>(sim: &Simulator<M>, settled: &Settled, per_period: usize) -> Columns {
@@ -51,7 +51,16 @@ fn columns<M: Model>(sim: &Simulator<M>, settled: &Settled, per_period: usize) -
     };
     let history = History::of_motion(sim, m, per_period);
     let w = sim.oscillator().frequency;
-    let mut c: Columns = Default::default();
+    let n = history.samples().count();
+    let mut c: Columns = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
     // The first (and, for one period, only) repeat of the cycle.
     let dphase = black_box(0.0);
     for s in history.samples() {
@@ -61,7 +70,7 @@ fn columns<M: Model>(sim: &Simulator<M>, settled: &Settled, per_period: usize) -
         c.3.push(s.v);
         c.4.push(s.a);
         c.5.push(s.friction);
-        c.6.push(s.domain);
+        c.6.push(i64::from(s.domain));
     }
     c
 }

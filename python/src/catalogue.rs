@@ -72,8 +72,12 @@ impl Command for Describe {
 
 /// `stickslip describe` of `model` at the parameters: `(text, json)`.
 #[pyfunction]
-pub fn describe(model: &str, set: Vec<(String, f64)>) -> PyResult<(String, String)> {
-    Ok(with_model(model, Describe(set))?)
+pub fn describe(
+    py: Python<'_>,
+    model: &str,
+    set: Vec<(String, f64)>,
+) -> PyResult<(String, String)> {
+    Ok(py.detach(|| with_model(model, Describe(set)))?)
 }
 
 /// Check a model file as the build does: the model's name, or `ModelError`

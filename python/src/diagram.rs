@@ -43,13 +43,13 @@ impl Command for Diagram {
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, name, from, to, count, transient = None, periods = None, lyapunov = None, branches = true))]
+#[pyo3(signature = (model, set, name, from_, to, count, transient = None, periods = None, lyapunov = None, branches = true))]
 pub fn orbit_diagram(
     py: Python<'_>,
     model: &str,
     set: Vec<(String, f64)>,
     name: String,
-    from: f64,
+    from_: f64,
     to: f64,
     count: usize,
     transient: Option<u32>,
@@ -67,7 +67,7 @@ pub fn orbit_diagram(
     let cmd = Diagram {
         set,
         name,
-        range: (from, to, count),
+        range: (from_, to, count),
         opts,
         branches,
     };

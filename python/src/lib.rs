@@ -4,7 +4,9 @@
 //! parameters as `(name, value)` pairs (as `--set`), and returns what the
 //! CLI prints with `--json` (the same serializers, so the numbers agree to
 //! the last bit), which the pure-Python package (`python/stickslip/`)
-//! wraps into result objects with numpy arrays. Work runs with the GIL
+//! wraps into result objects with numpy arrays; the large columns (a
+//! history's samples, the basins' starts) come as numpy arrays already,
+//! moved from their `Vec`s without a copy. Work runs with the GIL
 //! released; a failure is raised as one of the exception types of
 //! `stickslip.errors`, never a panic across the boundary.
 #![forbid(unsafe_code)]

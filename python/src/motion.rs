@@ -3,6 +3,7 @@
 
 use std::f64::consts::TAU;
 
+use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::orbit::attractor::{self, AttractorOptions};
@@ -26,8 +27,31 @@ type Columns = (
     Vec<f64>,
     Vec<f64>,
     Vec<f64>,
-    Vec<u32>,
+    Vec<i64>,
 );
+
+/// The same columns as numpy arrays, each moved from its `Vec` (no copy).
+type Arrays<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<i64>>,
+);
+
+fn arrays(py: Python<'_>, c: Columns) -> Arrays<'_> {
+    (
+        c.0.into_pyarray(py),
+        c.1.into_pyarray(py),
+        c.2.into_pyarray(py),
+        c.3.into_pyarray(py),
+        c.4.into_pyarray(py),
+        c.5.into_pyarray(py),
+        c.6.into_pyarray(py),
+    )
+}
 
 /// Samples a settled result again, with its model and parameters.
 trait Source: Send + Sync {
@@ -69,7 +93,16 @@ impl<M: Model> Source for Held<M> {
         };
         let w = self.sim.oscillator().frequency;
         let repeats = if shift.is_some() { periods } else { 1 };
-        let mut c: Columns = Default::default();
+        let n = history.samples().count() * repeats as usize;
+        let mut c: Columns = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
         for r in 0..repeats {
             let dphase = shift.unwrap_or(0.0) * f64::from(r);
             for s in history.samples() {
@@ -79,7 +112,7 @@ impl<M: Model> Source for Held<M> {
                 c.3.push(s.v);
                 c.4.push(s.a);
                 c.5.push(s.friction);
-                c.6.push(s.domain);
+                c.6.push(i64::from(s.domain));
             }
         }
         Ok(Some(c))
@@ -100,13 +133,20 @@ pub struct Trajectory {
 impl Trajectory {
     /// `periods` cycles of the motion (or the simulated window made
     /// `periods` times longer), `samples` per forcing period: the columns
-    /// `t, Wt, x, v, a, F, domain`, or `None` when there is no motion.
+    /// `t, Wt, x, v, a, F, domain` as numpy arrays (float64, the domain
+    /// int64), or `None` when there is no motion.
     #[pyo3(signature = (periods = 1, samples = 400))]
-    fn history(&self, py: Python<'_>, periods: u32, samples: usize) -> PyResult<Option<Columns>> {
+    fn history<'py>(
+        &self,
+        py: Python<'py>,
+        periods: u32,
+        samples: usize,
+    ) -> PyResult<Option<Arrays<'py>>> {
         if samples == 0 {
             return Err(Failure::new(Kind::Input, "samples must be at least 1").into());
         }
-        Ok(py.detach(|| self.source.columns(periods, samples))?)
+        let columns = py.detach(|| self.source.columns(periods, samples))?;
+        Ok(columns.map(|c| arrays(py, c)))
     }
 
     /// The figure title the CLI gives this result.

@@ -7,8 +7,14 @@ the pure-Python package wraps it. Failures raise ``stickslip.errors`` types.
 
 from typing import List, Optional, Sequence, Tuple
 
+import numpy as np
+import numpy.typing as npt
+
 Pairs = Sequence[Tuple[str, float]]
-Columns = Tuple[List[float], List[float], List[float], List[float], List[float], List[float], List[int]]
+Floats = npt.NDArray[np.float64]
+Ints = npt.NDArray[np.int64]
+# t, Wt, x, v, a, F (float64) and domain (int64), moved from Rust without a copy.
+Columns = Tuple[Floats, Floats, Floats, Floats, Floats, Floats, Ints]
 
 def models() -> List[str]: ...
 def params(model: str) -> List[Tuple[str, float, List[Tuple[str, float]], str, bool]]: ...
@@ -96,7 +102,8 @@ def basins(
     lyapunov: Optional[int] = None,
     resume: bool = False,
     progress: bool = True,
-) -> Tuple[str, List[float], List[float], List[int], List[float]]:
-    """The JSON of ``basins --json``; every start in index order: x, v, the
-    attractor's position in the JSON's list, the exponent (NaN: none)."""
+) -> Tuple[str, Floats, Floats, Ints, Floats]:
+    """The JSON of ``basins --json``; every start in index order (numpy
+    arrays): x, v, the attractor's position in the JSON's list, the exponent
+    (NaN: none)."""
     ...

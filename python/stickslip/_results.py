@@ -48,6 +48,8 @@ class History(Result):
     COLUMNS = ("t", "Wt", "x", "v", "a", "F", "domain")
 
     def __init__(self, columns: tuple) -> None:
+        # numpy arrays from the extension (moved from Rust, not copied);
+        # ``np.asarray`` keeps them as they are.
         t, wt, x, v, a, f, domain = columns
         self.t = np.asarray(t, dtype=float)
         self.Wt = np.asarray(wt, dtype=float)
@@ -56,7 +58,19 @@ class History(Result):
         self.a = np.asarray(a, dtype=float)
         self.F = np.asarray(f, dtype=float)
         self.domain = np.asarray(domain, dtype=np.int64)
-        super().__init__({c: getattr(self, c).tolist() for c in self.COLUMNS})
+        self._dict: Optional[Dict[str, Any]] = None
+
+    @property
+    def _data(self) -> Dict[str, Any]:  # type: ignore[override]
+        # The lists of ``to_dict()``, made on first use only.
+        if self._dict is None:
+            self._dict = {c: getattr(self, c).tolist() for c in self.COLUMNS}
+        return self._dict
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The columns as lists of Python numbers, as the CLI's JSON gives
+        them (new lists each call: ``tolist()`` copies, no deep copy needed)."""
+        return {c: getattr(self, c).tolist() for c in self.COLUMNS}
 
     def __len__(self) -> int:
         return len(self.t)
@@ -146,6 +160,18 @@ class Description(Result):
     def __str__(self) -> str:
         return self._text
 
+    def to_pandas(self, table: str = "domains") -> Any:
+        """One of ``describe``'s tables as a DataFrame: ``"domains"`` (one
+        row per domain: ``label``, ``v_min``, ``v_max``, ``two_d``, ``c``,
+        ``b``, ``regime``) or ``"boundaries"`` (``label``, ``v``, ``stick``,
+        ``static_bound``); ``None`` in the JSON is NaN."""
+        if table not in ("domains", "boundaries"):
+            from .errors import InputError
+
+            raise InputError(f"table {table!r}: expected 'domains' or 'boundaries'")
+        rows = [{k: (np.nan if v is None else v) for k, v in r.items()} for r in self._data[table]]
+        return _pandas().DataFrame(rows)
+
     def _repr_pretty_(self, p: Any, cycle: bool) -> None:  # IPython
         p.text(self._text)
 
@@ -230,6 +256,25 @@ class OrbitDiagram(Result):
         x = np.concatenate([np.asarray(c["x"], dtype=float) for c in cols]) if cols else np.zeros(0)
         v = np.concatenate([np.asarray(c["v"], dtype=float) for c in cols]) if cols else np.zeros(0)
         return {self.param: par, "x": x, "v": v}
+
+    def to_pandas(self) -> Any:
+        """One row per stroboscopic sample: ``direction`` (``up``, ``down``),
+        the parameter, ``x``, ``v``, and the value's largest ``exponent``
+        (NaN where none)."""
+        frames = {}
+        for direction in ("up", "down"):
+            cols = self.up if direction == "up" else self.down
+            counts = [len(c["x"]) for c in cols]
+            s = self.samples(direction)
+            frames[direction] = {
+                "direction": [direction] * len(s["x"]),
+                self.param: s[self.param],
+                "x": s["x"],
+                "v": s["v"],
+                "exponent": np.repeat(self.exponents(direction), counts) if cols else np.zeros(0),
+            }
+        pd = _pandas()
+        return pd.concat([pd.DataFrame(f) for f in frames.values()], ignore_index=True)
 
     def exponents(self, direction: str = "up") -> np.ndarray:
         """The largest exponent at each value of one direction (``nan`` where none)."""

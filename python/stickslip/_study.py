@@ -165,6 +165,11 @@ class Lyapunov(Result):
         self.N: Optional[int] = data.get("periods_per_cycle")
         self.end = np.array(data["end"], dtype=float)
 
+    def to_pandas(self) -> Any:
+        """The spectrum, one row per exponent (largest first): ``exponent``
+        (per unit time) and ``per_period`` (per forcing period)."""
+        return _pandas().DataFrame({"exponent": self.exponents, "per_period": self.per_period})
+
     def __repr__(self) -> str:
         what = self.attractor if self.structure is None else f"{self.attractor} {self.structure}"
         return f"Lyapunov({what}, exponents = {self.exponents.tolist()})"

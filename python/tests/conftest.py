@@ -11,7 +11,8 @@ from typing import List
 import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
-SHARED = REPO.parent / "shared"
+# The shared folder beside the clone (a worktree elsewhere: STICKSLIP_SHARED).
+SHARED = pathlib.Path(os.environ.get("STICKSLIP_SHARED", str(REPO.parent / "shared")))
 
 
 class Cli:

@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 use std::sync::atomic::AtomicU64;
 
+use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use stickslip::output::basins_summary;
 use stickslip::study::basins::{run_basins_counting, BasinFile, BasinOptions, BasinSettings};
@@ -22,7 +23,16 @@ type Axis = (f64, f64, i64);
 /// The JSON of `basins --json`, then every start in index order (the grid
 /// row by row, then the samples): `x`, `v`, the attractor's position in the
 /// JSON's list, and the largest exponent (NaN where none was computed).
-type Answer = (String, Vec<f64>, Vec<f64>, Vec<u32>, Vec<f64>);
+type Answer = (String, Vec<f64>, Vec<f64>, Vec<i64>, Vec<f64>);
+
+/// [`Answer`] with its columns as numpy arrays (moved, not copied).
+type Arrays<'py> = (
+    String,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<i64>>,
+    Bound<'py, PyArray1<f64>>,
+);
 
 struct Basins<'a> {
     set: Vec<(String, f64)>,
@@ -60,7 +70,7 @@ impl Command for Basins<'_> {
                 .attractors
                 .iter()
                 .position(|a| a.name == name)
-                .map(|k| k as u32)
+                .map(|k| k as i64)
                 .ok_or_else(|| {
                     Failure::new(
                         Kind::Input,
@@ -89,8 +99,8 @@ impl Command for Basins<'_> {
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
 #[pyo3(signature = (model, set, x, v, out, phase = 0.0, samples = 1000, seed = 1, periods = None, lyapunov = None, resume = false, progress = true))]
-pub fn basins(
-    py: Python<'_>,
+pub fn basins<'py>(
+    py: Python<'py>,
     model: &str,
     set: Vec<(String, f64)>,
     x: Axis,
@@ -103,7 +113,7 @@ pub fn basins(
     lyapunov: Option<u32>,
     resume: bool,
     progress: bool,
-) -> PyResult<Answer> {
+) -> PyResult<Arrays<'py>> {
     let defaults = BasinSettings::default();
     let settings = BasinSettings {
         phase,
@@ -129,5 +139,12 @@ pub fn basins(
         };
         with_model(model, cmd)
     })?;
-    Ok(done?)
+    let (json, xs, vs, ids, exponents) = done?;
+    Ok((
+        json,
+        xs.into_pyarray(py),
+        vs.into_pyarray(py),
+        ids.into_pyarray(py),
+        exponents.into_pyarray(py),
+    ))
 }
