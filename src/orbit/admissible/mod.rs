@@ -22,6 +22,7 @@ use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 mod sink;
+mod stick;
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
 use sink::{Except, Only, Sink, Violated, Worst};
@@ -450,6 +451,19 @@ fn walk<M: Model>(
             continue;
         }
         match (mi.kind, mi.domain) {
+            (MappingKind::Stick, _) if smooth => {
+                // As a smooth function of the points: the interior extrema
+                // of Fnf against ±as (none: no early end to watch).
+                if let Some(m) = stick::early_end_margin(sim, mi.from, a.x, a.phase, b.phase) {
+                    add(ViolationKind::StickEnd, Some(mi.from), m, &|| {
+                        format!(
+                            "the stick on {} must keep |Fnf| < as until W t = {}",
+                            label(mi.from),
+                            b.phase
+                        )
+                    });
+                }
+            }
             (MappingKind::Stick, _) => {
                 // |Fnf| < as during the stick: the first stick end is the one claimed.
                 let seg = Segment {
