@@ -371,7 +371,12 @@ pub fn worst_margin<M: Model>(
 /// The margin of the one condition `(kind, segment, boundary)` of
 /// [`conditions`] (the smallest if several match; NaN: not evaluable),
 /// `None` if the walk does not evaluate it at these points. No text, no
-/// allocation: the condition of a two-parameter curve.
+/// allocation: the condition of a two-parameter curve. Each margin is a
+/// smooth function of the points here: the interior margin from the closed
+/// form with no event search, and a stick's end (`StickEnd`) by the
+/// interior extrema of `Fnf` against `±as` (a force; `None` when `Fnf` has
+/// no extremum inside the stick) instead of the event search's phase
+/// difference, which jumps where the stick starts to end early.
 pub(crate) fn margin_of<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,

@@ -36,7 +36,8 @@ pub(super) fn early_end_margin<M: Model>(
     phi_b: f64,
 ) -> Option<f64> {
     let (stick, bound) = sim.stick()?;
-    if stick != k || !(phi_a < phi_b) {
+    // (NaN phases fail `phi_a < phi_b`.)
+    if stick != k || phi_a.partial_cmp(&phi_b) != Some(std::cmp::Ordering::Less) {
         return None;
     }
     let osc = sim.oscillator();
@@ -44,7 +45,7 @@ pub(super) fn early_end_margin<M: Model>(
     let vs = sim.velocity(k);
     // sin φ* = s, with s = −c v_s / (A0 W).
     let s = -c * vs / (a0 * w);
-    if !(s.abs() < 1.0) {
+    if s.abs().partial_cmp(&1.0) != Some(std::cmp::Ordering::Less) {
         return None;
     }
     let base = s.asin();
