@@ -218,3 +218,74 @@ fn a_stick_end_curve_satisfies_its_condition_and_the_sweeps_locate_it() {
     // Two crossings of each line: the curve is a U whose arms both cross.
     assert!(matched >= 6, "{matched} crossings");
 }
+
+/// The `curves` run over the window, seeded along Q0 = 200, starts this
+/// curve from the sweep's transition, and every curve ends on the box's
+/// edge or at a codimension-two point (none crawls to the point limit: a
+/// stick whose extremum of Fnf sits at its exit is not traced, its margin
+/// vanishing quadratically there).
+#[test]
+fn the_curves_run_starts_the_stick_end_curve() {
+    use stickslip::bifurcation::curve::CurveEndReason;
+    use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
+    let base = Params::default();
+    let opts = CurvesOptions {
+        x: ("W".into(), plane().x_range),
+        y: ("Q0".into(), plane().y_range),
+        seeds: vec![Line::Y(200.0)],
+        at: Vec::new(),
+    };
+    let t0 = std::time::Instant::now();
+    let (_, curves) = traced::<Paper>(&base, &opts, &CurvesSettings::default()).expect("the run");
+    eprintln!("{} curves in {:?}", curves.len(), t0.elapsed());
+    let stick_ends: Vec<&Curve> = curves
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.condition,
+                Condition::Margin {
+                    kind: ViolationKind::StickEnd,
+                    ..
+                }
+            )
+        })
+        .collect();
+    let ours = stick_ends
+        .iter()
+        .find(|c| {
+            c.structure
+                .as_ref()
+                .map(|s| s.notation(Paper::INFO))
+                .as_deref()
+                == Some(STRUCTURE)
+        })
+        .expect("the stick-end curve of P_{3_31 0_11 1_11 3_13 4_33}");
+    let xs = crossings::<Paper>(
+        &base,
+        &plane(),
+        ours,
+        Line::Y(200.0),
+        &CurveOptions::default(),
+    );
+    assert!(
+        xs.iter().any(|x| (x.x - 2.7324753081).abs() < 1e-8),
+        "{:?}",
+        xs.iter().map(|x| x.x).collect::<Vec<_>>()
+    );
+    for c in &curves {
+        for e in &c.ends {
+            assert!(
+                matches!(
+                    e.reason,
+                    CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
+                ),
+                "{:?} {:?} ends at ({}, {}): {:?}",
+                c.kind,
+                c.structure.as_ref().map(|s| s.notation(Paper::INFO)),
+                e.at.x,
+                e.at.y,
+                e.reason
+            );
+        }
+    }
+}

@@ -379,8 +379,9 @@ pub fn condition_value<M: Model>(
 /// smallest (the sweep located a stick that ends early) the smooth one must
 /// be the smallest too. `None` if nothing is evaluable, if the smallest
 /// (by the event search) is a stick's end whose smooth margin is not the
-/// smallest (a stick that never ends, or ends tangentially at its exit),
-/// or if a segment's duration is below `1e-3` rad
+/// smallest (a stick that never ends), or whose extremum of `Fnf` lies
+/// within `1e-3` rad of an end of the stick (its exit turning tangential:
+/// the margin vanishes quadratically), or if a segment's duration is below `1e-3` rad
 /// there (a segment shrinking to nothing: the structure's equations
 /// degenerate on the curve, which the motion on the other side of the
 /// transition carries). For an
@@ -455,6 +456,14 @@ pub fn condition_at_transition<M: Model>(
         return None;
     }
     let chosen = pick(true).or_else(|| pick(false))?;
+    // A stick's end whose extremum of Fnf sits at an end of the stick (its
+    // exit turning tangential): the margin vanishes quadratically there.
+    if chosen.kind == ViolationKind::StickEnd {
+        let (_, gap) = admissible::early_end_extremum(&sim, structure, points, chosen.segment)?;
+        if gap <= VANISHING {
+            return None;
+        }
+    }
     Some(Condition::Margin {
         kind: chosen.kind,
         segment: chosen.segment,

@@ -24,6 +24,8 @@ use crate::orbit::structure::Structure;
 mod sink;
 mod stick;
 
+pub(crate) use stick::early_end_extremum;
+
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
 use sink::{Except, Only, Sink, Violated, Worst};
 

@@ -20,7 +20,9 @@
 //! with it, and a curve can be traced on it.
 
 use crate::dynamics::simulate::Simulator;
-use crate::model::Model;
+use crate::model::{MappingKind, Model};
+use crate::orbit::periodic::{arrival, SwitchingPoint};
+use crate::orbit::structure::Structure;
 
 /// The margin of the stick on boundary `k` from `(x_a, φ_a)` to phase
 /// `phi_b` against an early end (see the module): the smallest over its
@@ -35,6 +37,39 @@ pub(super) fn early_end_margin<M: Model>(
     phi_a: f64,
     phi_b: f64,
 ) -> Option<f64> {
+    early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _)| m)
+}
+
+/// The margin of [`early_end_margin`] of the stick `segment` of `structure`
+/// at `points`, with the phase from its extremum to the nearer end of the
+/// stick: an extremum at an end (the stick's exit turning tangential) makes
+/// the margin vanish quadratically, no curve to trace. `None` if `segment`
+/// is no stick or has no interior extremum.
+pub(crate) fn early_end_extremum<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    segment: usize,
+) -> Option<(f64, f64)> {
+    let step = *structure.steps().get(segment)?;
+    let mi = M::INFO.mappings[step];
+    if mi.kind != MappingKind::Stick || points.len() != structure.len() {
+        return None;
+    }
+    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let (a, b) = (points[segment], arrival(points, segment, shift));
+    early_end(sim, mi.from, a.x, a.phase, b.phase)
+}
+
+/// The smallest margin over the interior extrema and that extremum's
+/// distance (in phase) to the nearer end of the stick.
+fn early_end<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> Option<(f64, f64)> {
     let (stick, bound) = sim.stick()?;
     // (NaN phases fail `phi_a < phi_b`.)
     if stick != k || phi_a.partial_cmp(&phi_b) != Some(std::cmp::Ordering::Less) {
@@ -50,7 +85,7 @@ pub(super) fn early_end_margin<M: Model>(
     }
     let base = s.asin();
     let tau = std::f64::consts::TAU;
-    let mut best: Option<f64> = None;
+    let mut best: Option<(f64, f64)> = None;
     for root in [base, std::f64::consts::PI - base] {
         // The first root above φ_a, then every turn up to φ_b.
         let mut n = ((phi_a - root) / tau).ceil();
@@ -72,8 +107,8 @@ pub(super) fn early_end_margin<M: Model>(
             } else {
                 bound + f
             };
-            if best.is_none_or(|b| margin.is_nan() || margin < b) {
-                best = Some(margin);
+            if best.is_none_or(|(b, _)| margin.is_nan() || margin < b) {
+                best = Some((margin, (phi - phi_a).min(phi_b - phi)));
             }
         }
     }
