@@ -17,7 +17,7 @@ use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::output::figure::map::plot_map;
 use stickslip::study::map::{
     self, classify_point, merge, motion_label, run_map, AxisError, GridAxis, MapError, MapFile,
-    MapOptions, PointResult, Shard,
+    MapMethod, MapOptions, PointResult, Shard,
 };
 
 /// W = 2.5, 3, …, 5 and Q0 = 70, 80, 90: (W, Q0) = (5, 70) is a reference motion.
@@ -88,7 +88,8 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
     assert_eq!(
         lines[0],
         "# stickslip map model=paper x=W=2.5:5:6 y=Q0=70:90:3 \
-         base=m=5,d=0.1,c=30,V=3,V1=4.5,V2=1.5,mus=0.5,muk=0.4,mu1=0.1,mu2=0.5,mu3=0.1,mu4=0.5,g=9.8"
+         base=m=5,d=0.1,c=30,V=3,V1=4.5,V2=1.5,mus=0.5,muk=0.4,mu1=0.1,mu2=0.5,mu3=0.1,mu4=0.5,g=9.8 \
+         method=continuation"
     );
     assert_eq!(lines[1], "index,W,Q0,status,motions");
     assert_eq!(lines.len(), 2 + 18);
@@ -100,6 +101,7 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
     assert_eq!(file.header.x, x);
     assert_eq!(file.header.y, y);
     assert_eq!(file.header.shard, None);
+    assert_eq!(file.header.method, Some(MapMethod::Continuation));
     assert!(!file.dropped_partial);
     // Re-serialized byte for byte.
     let mut again = file.header.to_lines();
@@ -461,6 +463,102 @@ fn d_merge_errors_name_the_points() {
     ));
     assert!(matches!(merge(&[], &out), Err(MapError::NoInput)));
     assert!(!out.exists());
+}
+
+#[test]
+fn d_the_header_records_the_method_and_resume_and_merge_refuse_another() {
+    let want = reference();
+    let dir = dir("method");
+    let simulation = |max_points: Option<usize>, resume: bool| MapOptions {
+        method: MapMethod::Simulation,
+        max_points,
+        resume,
+        ..MapOptions::default()
+    };
+    // A simulation run killed after 4 points, resumed by continuation:
+    // refused, the file untouched.
+    let out = dir.join("simulation.csv");
+    run(&out, simulation(Some(4), false)).unwrap();
+    let text = fs::read_to_string(&out).unwrap();
+    assert!(
+        text.lines().next().unwrap().ends_with(" method=simulation"),
+        "{text}"
+    );
+    match run(&out, resume()) {
+        Err(e @ MapError::Mismatch { .. }) => assert!(
+            e.to_string()
+                .contains("different map: method simulation, not continuation"),
+            "{e}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(fs::read_to_string(&out).unwrap(), text);
+    // Resumed by simulation, it is the single simulation run's file.
+    let s = run(&out, simulation(None, true)).unwrap();
+    assert_eq!((s.already_done, s.complete), (4, true));
+    let single = dir.join("simulation-single.csv");
+    run(&single, simulation(None, false)).unwrap();
+    let sim_text = fs::read_to_string(&single).unwrap();
+    assert_eq!(fs::read_to_string(&out).unwrap(), sim_text);
+    assert_eq!(
+        MapFile::read(&out).unwrap().header.method,
+        Some(MapMethod::Simulation)
+    );
+
+    // Merge refuses files of two methods, in either order.
+    let full = dir.join("full.csv");
+    fs::write(&full, want).unwrap();
+    let merged = dir.join("merged.csv");
+    for (inputs, what) in [
+        (
+            [full.clone(), out.clone()],
+            "method simulation, not continuation",
+        ),
+        (
+            [out.clone(), full.clone()],
+            "method continuation, not simulation",
+        ),
+    ] {
+        match merge(&inputs, &merged) {
+            Err(e @ MapError::Mismatch { .. }) => assert!(e.to_string().contains(what), "{e}"),
+            other => panic!("{other:?}"),
+        }
+    }
+    assert!(!merged.exists());
+
+    // A file from before the header recorded the method parses (method
+    // unknown), and is neither resumed nor merged with a recorded one.
+    let older = dir.join("older.csv");
+    fs::write(&older, want.replacen(" method=continuation", "", 1)).unwrap();
+    assert_eq!(MapFile::read(&older).unwrap().header.method, None);
+    for result in [
+        run(&older, resume()),
+        merge(&[full.clone(), older.clone()], &merged),
+    ] {
+        match result {
+            Err(e @ MapError::Mismatch { .. }) => {
+                assert!(e.to_string().contains("method unrecorded"), "{e}")
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    // Files that all lack it still merge (as they did).
+    merge(std::slice::from_ref(&older), &merged).unwrap();
+    assert_eq!(
+        fs::read_to_string(&merged).unwrap(),
+        want.replacen(" method=continuation", "", 1)
+    );
+    // An unknown method is a bad header.
+    let bad = dir.join("bad.csv");
+    fs::write(
+        &bad,
+        want.replacen("method=continuation", "method=guess", 1),
+    )
+    .unwrap();
+    match MapFile::read(&bad) {
+        Err(e @ MapError::Header { .. }) => assert!(e.to_string().contains("`guess`"), "{e}"),
+        other => panic!("{other:?}"),
+    }
 }
 
 #[test]

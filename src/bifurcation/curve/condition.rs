@@ -6,7 +6,9 @@
 //! * `Margin`: the margin of exactly that condition of SPEC §6, as
 //!   [`crate::orbit::admissible::conditions`] computes it (the smallest of
 //!   the matching entries), in the quantity's unit (a velocity, an
-//!   acceleration, a force or a phase).
+//!   acceleration, a force or a phase); a stick that must not end early
+//!   (`StickEnd`) by the smooth margin of `orbit::admissible::margin_of`
+//!   (`as ∓ Fnf` at the stick's interior extrema of `Fnf`, a force).
 //! * `Eigen(Fold)` and `Eigen(BranchPoint)`: `det(I − DP)`;
 //!   `Eigen(PeriodDoubling)`: `det(I + DP)`; `Eigen(NeimarkSacker)`:
 //!   `det DP − 1` (dimensionless; the pair's being complex is watched along

@@ -372,9 +372,16 @@ pub fn condition_value<M: Model>(
 /// does), leaving out an interior margin to a boundary the segment both
 /// starts and ends on (an excursion shrinking to nothing: its margin
 /// vanishes quadratically, its arrival's linearly, and the arrival is
-/// taken); `None` if the smallest of all is a stick's end (`StickEnd`,
-/// whose margin is a phase difference with a jump, no smooth function) or
-/// nothing is evaluable, or if a segment's duration is below `1e-3` rad
+/// taken). A stick's end (`StickEnd`) is measured by its smooth margin
+/// (the interior extrema of `Fnf` against `±as`,
+/// `orbit::admissible::margin_of`) rather than the event search's phase
+/// difference, which jumps; where the event search's margin is the
+/// smallest (the sweep located a stick that ends early) the smooth one must
+/// be the smallest too. `None` if nothing is evaluable, if the smallest
+/// (by the event search) is a stick's end whose smooth margin is not the
+/// smallest (a stick that never ends), or whose extremum of `Fnf` lies
+/// within `1e-3` rad of an end of the stick (its exit turning tangential:
+/// the margin vanishes quadratically), or if a segment's duration is below `1e-3` rad
 /// there (a segment shrinking to nothing: the structure's equations
 /// degenerate on the curve, which the motion on the other side of the
 /// transition carries). For an
@@ -393,8 +400,20 @@ pub fn condition_at_transition<M: Model>(
         return None;
     }
     let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
-    let all = admissible::conditions(&sim, structure, points);
+    let mut all = admissible::conditions(&sim, structure, points);
     let info = M::INFO;
+    // The smallest as the sweep saw it (a stick's end by the event search).
+    let seen = all
+        .iter()
+        .filter(|c| c.margin.is_finite())
+        .min_by(|a, b| a.margin.total_cmp(&b.margin))
+        .map(|c| (c.kind, c.segment, c.boundary))?;
+    // A stick's end measured by its smooth margin (the interior extrema of
+    // Fnf against ±as), NaN where it has none.
+    for c in all.iter_mut().filter(|c| c.kind == ViolationKind::StickEnd) {
+        c.margin = admissible::margin_of(&sim, structure, points, (c.kind, c.segment, c.boundary))
+            .unwrap_or(f64::NAN);
+    }
     // An interior margin to a boundary that the segment starts and ends
     // on measures an excursion that shrinks to nothing: it vanishes
     // quadratically (no simple zero), with the arrival's that vanishes
@@ -406,9 +425,7 @@ pub fn condition_at_transition<M: Model>(
         }
     };
     let usable = |c: &&admissible::Violation| {
-        c.margin.is_finite()
-            && !matches!(c.kind, ViolationKind::Other | ViolationKind::StickEnd)
-            && !degenerate(c)
+        c.margin.is_finite() && c.kind != ViolationKind::Other && !degenerate(c)
     };
     let pick = |named: bool| {
         all.iter()
@@ -420,7 +437,12 @@ pub fn condition_at_transition<M: Model>(
         .iter()
         .filter(|c| c.margin.is_finite())
         .min_by(|a, b| a.margin.total_cmp(&b.margin))?;
-    if smallest.kind == ViolationKind::StickEnd {
+    // A stick that ends early: a curve only where its smooth margin is the
+    // one that vanishes (an extremum of Fnf touching ±as), not for a stick
+    // that never ends or ends at its exit tangentially.
+    if seen.0 == ViolationKind::StickEnd
+        && (smallest.kind, smallest.segment, smallest.boundary) != seen
+    {
         return None;
     }
     // A segment shrinking to nothing: its mapping equation degenerates
@@ -434,6 +456,14 @@ pub fn condition_at_transition<M: Model>(
         return None;
     }
     let chosen = pick(true).or_else(|| pick(false))?;
+    // A stick's end whose extremum of Fnf sits at an end of the stick (its
+    // exit turning tangential): the margin vanishes quadratically there.
+    if chosen.kind == ViolationKind::StickEnd {
+        let (_, gap) = admissible::early_end_extremum(&sim, structure, points, chosen.segment)?;
+        if gap <= VANISHING {
+            return None;
+        }
+    }
     Some(Condition::Margin {
         kind: chosen.kind,
         segment: chosen.segment,

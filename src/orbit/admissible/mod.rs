@@ -22,6 +22,9 @@ use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 mod sink;
+mod stick;
+
+pub(crate) use stick::early_end_extremum;
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
 use sink::{Except, Only, Sink, Violated, Worst};
@@ -370,7 +373,12 @@ pub fn worst_margin<M: Model>(
 /// The margin of the one condition `(kind, segment, boundary)` of
 /// [`conditions`] (the smallest if several match; NaN: not evaluable),
 /// `None` if the walk does not evaluate it at these points. No text, no
-/// allocation: the condition of a two-parameter curve.
+/// allocation: the condition of a two-parameter curve. Each margin is a
+/// smooth function of the points here: the interior margin from the closed
+/// form with no event search, and a stick's end (`StickEnd`) by the
+/// interior extrema of `Fnf` against `±as` (a force; `None` when `Fnf` has
+/// no extremum inside the stick) instead of the event search's phase
+/// difference, which jumps where the stick starts to end early.
 pub(crate) fn margin_of<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
@@ -450,6 +458,19 @@ fn walk<M: Model>(
             continue;
         }
         match (mi.kind, mi.domain) {
+            (MappingKind::Stick, _) if smooth => {
+                // As a smooth function of the points: the interior extrema
+                // of Fnf against ±as (none: no early end to watch).
+                if let Some(m) = stick::early_end_margin(sim, mi.from, a.x, a.phase, b.phase) {
+                    add(ViolationKind::StickEnd, Some(mi.from), m, &|| {
+                        format!(
+                            "the stick on {} must keep |Fnf| < as until W t = {}",
+                            label(mi.from),
+                            b.phase
+                        )
+                    });
+                }
+            }
             (MappingKind::Stick, _) => {
                 // |Fnf| < as during the stick: the first stick end is the one claimed.
                 let seg = Segment {

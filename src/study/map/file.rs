@@ -13,6 +13,7 @@ use crate::study::record::{complete_lines, write_atomic};
 
 use super::error::{io_err, MapError};
 use super::grid::{GridAxis, Shard};
+use super::run::MapMethod;
 
 /// What is known at one grid point.
 #[derive(Clone, Debug, PartialEq)]
@@ -166,6 +167,9 @@ pub struct MapHeader {
     pub y: GridAxis,
     /// The other run-time parameters, in declaration order.
     pub base: Vec<(String, f64)>,
+    /// How the points were classified (`--method`); `None` for a file
+    /// written before the header recorded it.
+    pub method: Option<MapMethod>,
     /// The part computed, in a shard's file only.
     pub shard: Option<Shard>,
 }
@@ -173,11 +177,13 @@ pub struct MapHeader {
 const MAGIC: &str = "# stickslip map";
 
 impl MapHeader {
-    /// The header of a map of `M` at `base` over `x × y`.
+    /// The header of a map of `M` at `base` over `x × y`, its points
+    /// classified by `method`.
     pub fn new<M: Model>(
         base: &M::Params,
         x: &GridAxis,
         y: &GridAxis,
+        method: MapMethod,
         shard: Option<Shard>,
     ) -> Self {
         let base = M::Params::NAMES
@@ -191,6 +197,7 @@ impl MapHeader {
             x: x.clone(),
             y: y.clone(),
             base,
+            method: Some(method),
             shard: shard.filter(|s| s.count > 1),
         }
     }
@@ -217,6 +224,9 @@ impl MapHeader {
             "{MAGIC} model={} x={} y={} base={base}",
             self.model, self.x, self.y
         );
+        if let Some(method) = self.method {
+            let _ = write!(s, " method={}", method.name());
+        }
         if let Some(shard) = self.shard {
             let _ = write!(s, " shard={shard}");
         }
@@ -235,6 +245,7 @@ impl MapHeader {
             .strip_prefix(MAGIC)
             .ok_or_else(|| format!("the first line does not start with `{MAGIC}`"))?;
         let (mut model, mut x, mut y, mut base, mut shard) = (None, None, None, None, None);
+        let mut method = None;
         for token in rest.split_whitespace() {
             let (key, value) = token
                 .split_once('=')
@@ -256,6 +267,11 @@ impl MapHeader {
                     }
                     base = Some(pairs);
                 }
+                "method" => {
+                    method = Some(MapMethod::parse(value).ok_or_else(|| {
+                        format!("unknown method `{value}` (continuation or simulation)")
+                    })?)
+                }
                 "shard" => shard = Some(Shard::parse(value).map_err(|e| e.to_string())?),
                 other => return Err(format!("unknown header key `{other}`")),
             }
@@ -266,6 +282,7 @@ impl MapHeader {
             x: x.ok_or_else(|| missing("x"))?,
             y: y.ok_or_else(|| missing("y"))?,
             base: base.ok_or_else(|| missing("base"))?,
+            method,
             shard,
         })
     }
@@ -292,6 +309,20 @@ impl MapHeader {
                 "parameters {}, not {}",
                 show(&other.base),
                 show(&self.base)
+            ));
+        }
+        // Two methods in one file would mix two classifications.
+        if self.method != other.method {
+            let show = |m: Option<MapMethod>| {
+                m.map_or(
+                    "unrecorded (a file from before the header recorded it)",
+                    |m| m.name(),
+                )
+            };
+            return Some(format!(
+                "method {}, not {} (run it with the same --method)",
+                show(other.method),
+                show(self.method)
             ));
         }
         None

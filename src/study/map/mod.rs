@@ -38,7 +38,7 @@
 //! # File format
 //!
 //! ```text
-//! # stickslip map model=paper x=W=3:5:6 y=Q0=50:80:3 base=m=5,d=0.1,... [shard=0/3]
+//! # stickslip map model=paper x=W=3:5:6 y=Q0=50:80:3 base=m=5,d=0.1,... method=continuation [shard=0/3]
 //! index,W,Q0,status,motions
 //! 0,3.0,50.0,"ok","P_{3_31 0_11 3_13 4_33}"
 //! 1,3.4,50.0,"ok","NM;P_{3_33 4_33}^2"
@@ -52,7 +52,10 @@
 //! forcing periods, or `NM`. Numbers are printed in Rust's shortest
 //! round-trip form, so a parsed line prints back byte for byte. The shard
 //! appears in the header of a shard's file only: a complete map does not
-//! depend on how it was computed.
+//! depend on how it was split. The method does change what a point lists,
+//! so the header records it (`method=`), and a resume or merge refuses a
+//! file of the other method (or of none: a file written before the header
+//! recorded it), as it refuses another grid.
 
 mod classify;
 mod continuation;

@@ -45,6 +45,15 @@ impl MapMethod {
             _ => None,
         }
     }
+
+    /// `continuation` or `simulation`: the name `--method` takes and the
+    /// map file's header records.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Continuation => "continuation",
+            Self::Simulation => "simulation",
+        }
+    }
 }
 
 /// Options of [`run_map`].
@@ -154,7 +163,7 @@ pub fn run_map_counting<M: Model>(
             return Err(MapError::BadShard(s.to_string()));
         }
     }
-    let header = MapHeader::new::<M>(base, x_axis, y_axis, opts.shard);
+    let header = MapHeader::new::<M>(base, x_axis, y_axis, opts.method, opts.shard);
     let nx = x_axis.count;
     let in_part = |i: usize| header.shard.is_none_or(|s| s.contains(i, nx));
     let shard_points = (0..total).filter(|&i| in_part(i)).count();

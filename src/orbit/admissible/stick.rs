@@ -1,0 +1,116 @@
+//! The smooth margin of a stick that must not end early (SPEC §3, §6), for
+//! a two-parameter curve of that transition.
+//!
+//! While the mass sticks on a boundary of velocity `v_s` it moves with it,
+//! `x(φ) = x_a + v_s (φ − φ_a) / W`, so the non-friction force
+//! `Fnf(φ) = A0 cos φ − 2 d v_s − c x(φ)` has the rate
+//! `dFnf/dφ = −A0 sin φ − c v_s / W` and its extrema are in closed form:
+//! `sin φ* = −c v_s / (A0 W)` (none when `|c v_s| ≥ |A0| W`: then `Fnf` is
+//! monotone and the stick cannot end early). The stick holds while
+//! `|Fnf| < as`; it ends before the structure's exit where an interior
+//! local maximum of `Fnf` reaches `+as` or an interior local minimum
+//! reaches `−as`. The margin is the smallest of `as − Fnf(φ*)` over the
+//! interior maxima and `as + Fnf(φ*)` over the interior minima: a smooth
+//! function of the stick's start and the parameters while that extremum
+//! stays inside the stick, zero where `|Fnf|` touches `as` tangentially.
+//!
+//! The event search's margin of the same condition (a phase difference:
+//! where the stick ends against where the structure says) jumps there, so
+//! a sweep locates the transition by bisection; this margin crosses zero
+//! with it, and a curve can be traced on it.
+
+use crate::dynamics::simulate::Simulator;
+use crate::model::{MappingKind, Model};
+use crate::orbit::periodic::{arrival, SwitchingPoint};
+use crate::orbit::structure::Structure;
+
+/// The margin of the stick on boundary `k` from `(x_a, φ_a)` to phase
+/// `phi_b` against an early end (see the module): the smallest over its
+/// interior extrema of `Fnf`, in force per unit mass; `None` when `Fnf`
+/// has no extremum strictly inside `(φ_a, φ_b)` or the model has no static
+/// bound there. `as − |Fnf|` at an extremum is its value at the extremum's
+/// own side (a maximum against `+as`, a minimum against `−as`).
+pub(super) fn early_end_margin<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> Option<f64> {
+    early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _)| m)
+}
+
+/// The margin of [`early_end_margin`] of the stick `segment` of `structure`
+/// at `points`, with the phase from its extremum to the nearer end of the
+/// stick: an extremum at an end (the stick's exit turning tangential) makes
+/// the margin vanish quadratically, no curve to trace. `None` if `segment`
+/// is no stick or has no interior extremum.
+pub(crate) fn early_end_extremum<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    segment: usize,
+) -> Option<(f64, f64)> {
+    let step = *structure.steps().get(segment)?;
+    let mi = M::INFO.mappings[step];
+    if mi.kind != MappingKind::Stick || points.len() != structure.len() {
+        return None;
+    }
+    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let (a, b) = (points[segment], arrival(points, segment, shift));
+    early_end(sim, mi.from, a.x, a.phase, b.phase)
+}
+
+/// The smallest margin over the interior extrema and that extremum's
+/// distance (in phase) to the nearer end of the stick.
+fn early_end<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> Option<(f64, f64)> {
+    let (stick, bound) = sim.stick()?;
+    // (NaN phases fail `phi_a < phi_b`.)
+    if stick != k || phi_a.partial_cmp(&phi_b) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let osc = sim.oscillator();
+    let (a0, c, w) = (osc.amplitude, osc.stiffness, osc.frequency);
+    let vs = sim.velocity(k);
+    // sin φ* = s, with s = −c v_s / (A0 W).
+    let s = -c * vs / (a0 * w);
+    if s.abs().partial_cmp(&1.0) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let base = s.asin();
+    let tau = std::f64::consts::TAU;
+    let mut best: Option<(f64, f64)> = None;
+    for root in [base, std::f64::consts::PI - base] {
+        // The first root above φ_a, then every turn up to φ_b.
+        let mut n = ((phi_a - root) / tau).ceil();
+        loop {
+            let phi = root + n * tau;
+            n += 1.0;
+            if phi <= phi_a {
+                continue;
+            }
+            if phi >= phi_b {
+                break;
+            }
+            let x = x_a + vs * (phi - phi_a) / w;
+            let f = M::stick_forces(sim.params(), x, phi)?.non_friction;
+            // d²Fnf/dφ² = −A0 cos φ*: negative at a maximum.
+            let curvature = -a0 * phi.cos();
+            let margin = if curvature < 0.0 {
+                bound - f
+            } else {
+                bound + f
+            };
+            if best.is_none_or(|(b, _)| margin.is_nan() || margin < b) {
+                best = Some((margin, (phi - phi_a).min(phi_b - phi)));
+            }
+        }
+    }
+    best
+}

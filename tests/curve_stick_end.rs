@@ -1,0 +1,291 @@
+//! The curve of a stick that ends early (`StickEnd`, named
+//! `stick_vanishing`), paper model, plane (W, Q0):
+//!
+//! At Q0 = 200 a sweep along W ends the branch of `P_{3_31 0_11 1_11 3_13 4_33}`
+//! at W ≈ 2.7324753: during its stick the non-friction force `Fnf` has an
+//! interior maximum that reaches the static bound `as`, so beyond it the
+//! stick ends early (into Ω1: a short slip and a second stick,
+//! `P_{3_31 0_11 1_11 0_11 1_11 3_13 4_33}`).
+//!
+//! 1. The curve started from that transition: at every point the motion is
+//!    re-solved by `PeriodicSolver` at that (W, Q0), and the largest `Fnf`
+//!    over the stick is found by this test's own scan and bisection on
+//!    `dFnf/dφ` (the closed form of SPEC §3 with `x = x_a + V (φ − φ_a)/W`):
+//!    `as − max Fnf` is zero to 1e-10 of the condition's scale.
+//! 2. Sweeps along W at other Q0 locate the transition within 1e-8 of the
+//!    curve's exact crossing of that line.
+
+mod common;
+
+use stickslip::bifurcation::curve::{
+    condition_at_transition, condition_scale, crossings, trace, Condition, Curve, CurveOptions,
+    CurvePoint, Line, Plane,
+};
+use stickslip::bifurcation::TransitionKind;
+use stickslip::models::paper::{Paper, Params};
+use stickslip::orbit::admissible::ViolationKind;
+use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
+use stickslip::study::sweep::{sweep, SweepOptions};
+use stickslip::{Model, ParamSet};
+
+const STRUCTURE: &str = "P_{3_31 0_11 1_11 3_13 4_33}";
+
+fn plane() -> Plane {
+    Plane {
+        x: Params::index_of("W").unwrap(),
+        y: Params::index_of("Q0").unwrap(),
+        x_range: [2.6, 2.9],
+        y_range: [185.0, 215.0],
+    }
+}
+
+fn at(w: f64, q: f64) -> Params {
+    Params {
+        W: w,
+        Q0: q,
+        ..Params::default()
+    }
+}
+
+/// The sweep along W at `q` over the box's W range.
+fn sweep_at(q: f64) -> stickslip::study::sweep::Sweep {
+    let [lo, hi] = plane().x_range;
+    sweep::<Paper>(at(2.75, q), "W", lo, hi, 60, SweepOptions::default()).expect("sweep")
+}
+
+/// The ends of the branches of [`STRUCTURE`] that the sweep at `q` names
+/// `stick_vanishing`, with the switching points there.
+fn stick_ends(q: f64) -> Vec<(f64, Vec<SwitchingPoint>)> {
+    let s = sweep_at(q);
+    let mut out = Vec::new();
+    for b in s.branches.iter().filter(|b| b.structure == STRUCTURE) {
+        for e in b.ends.iter().filter(|e| e.reason == "stick_vanishing") {
+            let sample = b
+                .points
+                .iter()
+                .find(|p| p.value == e.value)
+                .expect("the branch's sample at its end");
+            out.push((e.value, sample.points.clone()));
+        }
+    }
+    out
+}
+
+/// `as − max Fnf` over the interior of the stick `segment` of the motion
+/// of `structure` at `(w, q)` (the stick from `points[segment]` to the next
+/// point), by this test's own scan of `dFnf/dφ` and bisection; the motion is
+/// re-solved first from `points`. `None` if `Fnf` has no interior maximum.
+fn stick_margin(
+    structure: &Structure,
+    w: f64,
+    q: f64,
+    points: &[SwitchingPoint],
+    segment: usize,
+) -> Option<f64> {
+    let p = at(w, q);
+    let mut pts = points.to_vec();
+    let t = PeriodicSolver::<Paper>::new(structure.clone()).solve(
+        &p,
+        &mut pts,
+        NewtonOptions::default(),
+    );
+    assert!(t.converged(), "re-solving at ({w}, {q}): {t:?}");
+    let m = pts.len();
+    let (a, mut b) = (pts[segment], pts[(segment + 1) % m]);
+    if segment + 1 == m {
+        b.phase += std::f64::consts::TAU * structure.periods() as f64;
+    }
+    // SPEC §3: Fnf = A0 cos(W t) − 2 d V − c x, stuck at v = V, per unit mass.
+    let a0 = p.Q0 / p.m;
+    let bound = p.mus * p.g;
+    let x = |phi: f64| a.x + p.V * (phi - a.phase) / p.W;
+    let fnf = |phi: f64| a0 * phi.cos() - 2.0 * p.d * p.V - p.c * x(phi);
+    let rate = |phi: f64| -a0 * phi.sin() - p.c * p.V / p.W;
+    let n = 4000;
+    let h = (b.phase - a.phase) / n as f64;
+    let mut best: Option<f64> = None;
+    for i in 0..n {
+        let (lo, hi) = (a.phase + h * i as f64, a.phase + h * (i + 1) as f64);
+        // A maximum: the rate turns from positive to negative.
+        if rate(lo) > 0.0 && rate(hi) <= 0.0 {
+            let phi = common::roots::bisect(lo, hi, |s| rate(s) <= 0.0, 0.0);
+            let f = fnf(phi);
+            best = Some(best.map_or(bound - f, |v: f64| v.min(bound - f)));
+        }
+    }
+    best
+}
+
+/// The curve from the sweep's stick end at Q0 = 200.
+fn the_curve() -> (Structure, Curve) {
+    let base = Params::default();
+    let structure = Structure::parse(Paper::INFO, STRUCTURE, 1).expect("structure");
+    let ends = stick_ends(200.0);
+    eprintln!(
+        "Q0 = 200: stick ends at W = {:?}",
+        ends.iter().map(|e| e.0).collect::<Vec<_>>()
+    );
+    let (w, points) = ends
+        .iter()
+        .find(|e| (e.0 - 2.7324753).abs() < 1e-6)
+        .cloned()
+        .expect("the stick end near W = 2.7324753");
+    let cond = condition_at_transition::<Paper>(
+        &at(w, 200.0),
+        &structure,
+        &points,
+        TransitionKind::StickVanishing,
+    )
+    .expect("a condition at the stick end");
+    let Condition::Margin { kind, segment, .. } = cond else {
+        panic!("{cond:?}");
+    };
+    assert_eq!(kind, ViolationKind::StickEnd);
+    assert_eq!(segment, 3, "the stick 0_11 is the fourth mapping applied");
+    let start = CurvePoint {
+        x: w,
+        y: 200.0,
+        points,
+    };
+    let t0 = std::time::Instant::now();
+    let c = trace::<Paper>(
+        &base,
+        &plane(),
+        Some(&structure),
+        &start,
+        cond,
+        &CurveOptions::default(),
+    )
+    .expect("the stick-end curve");
+    eprintln!(
+        "{:?}: {} points in {:?}, ends {:?}",
+        c.kind,
+        c.points.len(),
+        t0.elapsed(),
+        c.ends
+            .iter()
+            .map(|e| (e.reason.clone(), e.at.x, e.at.y))
+            .collect::<Vec<_>>()
+    );
+    (structure, c)
+}
+
+#[test]
+fn a_stick_end_curve_satisfies_its_condition_and_the_sweeps_locate_it() {
+    let base = Params::default();
+    let (structure, c) = the_curve();
+    assert_eq!(c.kind, TransitionKind::StickVanishing);
+    assert!(c.points.len() >= 5, "{} points", c.points.len());
+    let (lo, hi) = c
+        .points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), q| {
+            (a.min(q.y), b.max(q.y))
+        });
+    eprintln!("Q0 from {lo} to {hi}");
+    assert!(hi - lo > 10.0, "Q0 from {lo} to {hi}");
+    // 1. Every point (and end): as − max Fnf = 0, independently.
+    let mut worst = 0.0f64;
+    for q in c.points.iter().chain(c.ends.iter().map(|e| &e.at)) {
+        let g = stick_margin(&structure, q.x, q.y, &q.points, 3).expect("an interior maximum");
+        let scale =
+            condition_scale::<Paper>(&at(q.x, q.y), c.condition, Some(&structure), &q.points);
+        worst = worst.max(g.abs() / scale);
+    }
+    eprintln!("largest |as − max Fnf| / scale over the curve: {worst:e}");
+    assert!(worst <= 1e-10, "|g| / scale = {worst:e}");
+    // 2. Sweeps along W at other Q0 locate the crossings.
+    let mut matched = 0;
+    for q in [200.0, 205.0, 210.0] {
+        let xs = crossings::<Paper>(&base, &plane(), &c, Line::Y(q), &CurveOptions::default());
+        assert!(!xs.is_empty(), "no crossing of Q0 = {q}");
+        let located = stick_ends(q);
+        for x in &xs {
+            assert_eq!(x.y, q);
+            let near = located
+                .iter()
+                .map(|(v, _)| (v - x.x).abs())
+                .fold(f64::INFINITY, f64::min);
+            eprintln!(
+                "Q0 = {q}: the curve crosses at W = {} ({near:e} from the sweep's)",
+                x.x
+            );
+            assert!(near <= 1e-8, "Q0 = {q}: W = {}: {near:e}", x.x);
+            matched += 1;
+        }
+    }
+    // Two crossings of each line: the curve is a U whose arms both cross.
+    assert!(matched >= 6, "{matched} crossings");
+}
+
+/// The `curves` run over the window, seeded along Q0 = 200, starts this
+/// curve from the sweep's transition, and every curve ends on the box's
+/// edge or at a codimension-two point (none crawls to the point limit: a
+/// stick whose extremum of Fnf sits at its exit is not traced, its margin
+/// vanishing quadratically there).
+#[test]
+fn the_curves_run_starts_the_stick_end_curve() {
+    use stickslip::bifurcation::curve::CurveEndReason;
+    use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
+    let base = Params::default();
+    let opts = CurvesOptions {
+        x: ("W".into(), plane().x_range),
+        y: ("Q0".into(), plane().y_range),
+        seeds: vec![Line::Y(200.0)],
+        at: Vec::new(),
+    };
+    let t0 = std::time::Instant::now();
+    let (_, curves) = traced::<Paper>(&base, &opts, &CurvesSettings::default()).expect("the run");
+    eprintln!("{} curves in {:?}", curves.len(), t0.elapsed());
+    let stick_ends: Vec<&Curve> = curves
+        .iter()
+        .filter(|c| {
+            matches!(
+                c.condition,
+                Condition::Margin {
+                    kind: ViolationKind::StickEnd,
+                    ..
+                }
+            )
+        })
+        .collect();
+    let ours = stick_ends
+        .iter()
+        .find(|c| {
+            c.structure
+                .as_ref()
+                .map(|s| s.notation(Paper::INFO))
+                .as_deref()
+                == Some(STRUCTURE)
+        })
+        .expect("the stick-end curve of P_{3_31 0_11 1_11 3_13 4_33}");
+    let xs = crossings::<Paper>(
+        &base,
+        &plane(),
+        ours,
+        Line::Y(200.0),
+        &CurveOptions::default(),
+    );
+    assert!(
+        xs.iter().any(|x| (x.x - 2.7324753081).abs() < 1e-8),
+        "{:?}",
+        xs.iter().map(|x| x.x).collect::<Vec<_>>()
+    );
+    for c in &curves {
+        for e in &c.ends {
+            assert!(
+                matches!(
+                    e.reason,
+                    CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
+                ),
+                "{:?} {:?} ends at ({}, {}): {:?}",
+                c.kind,
+                c.structure.as_ref().map(|s| s.notation(Paper::INFO)),
+                e.at.x,
+                e.at.y,
+                e.reason
+            );
+        }
+    }
+}
