@@ -159,12 +159,6 @@ impl SegmentFlow {
             }
             let newton = t - s.a * self.w / s.da;
             let resolution = 4.0 * f64::EPSILON * t.abs().max(1.0);
-            // Newton's correction below the phase's rounding: `t` is the zero
-            // (such a step rounds to `t`, the bracket's end, and would
-            // otherwise be taken for a failed one and bisected forty times).
-            if s.da != 0.0 && (newton - t).abs() <= resolution {
-                break;
-            }
             let next = if s.da != 0.0 && newton > lo && newton < hi {
                 newton
             } else {
