@@ -17,7 +17,7 @@
 
 use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
 use crate::model::{MappingKind, Model, Side};
-use crate::orbit::extrema::SegmentFlow;
+use crate::orbit::extrema::{SegmentFlow, Settle};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
@@ -309,7 +309,12 @@ fn check_flow<M: Model>(
     // Closer than this to a boundary, the event search decides.
     let near = (100.0 * sim.options().graze_tol).max(1e-9 * vscale);
     let mut clear = true;
-    flow.acceleration_zeros(seg.phase, b + tol, |t, s| {
+    let settle = if margin.closed_form {
+        Settle::AtRounding
+    } else {
+        Settle::Bisected
+    };
+    flow.acceleration_zeros(seg.phase, b + tol, settle, |t, s| {
         if t > b {
             clear = false;
             return;
