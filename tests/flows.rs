@@ -137,7 +137,12 @@ fn the_event_searchs_response_is_the_generated_flow() {
                     ("x", s.x, x, scale),
                     ("v", s.v, v, scale * osc.frequency),
                     ("a", s.a, a, scale * (co.c + co.two_d.abs() + 1.0)),
-                    ("a'", s.da, da, scale * (co.c + co.two_d.abs() + 1.0).powi(2)),
+                    (
+                        "a'",
+                        s.da,
+                        da,
+                        scale * (co.c + co.two_d.abs() + 1.0).powi(2),
+                    ),
                 ] {
                     assert!(
                         (got - want).abs() <= 1e-12 * sc,

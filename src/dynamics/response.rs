@@ -78,8 +78,11 @@ impl Response {
             dev_v,
             phi0,
         };
-        (co.c != 0.0 && [scale, p, q, offset, dev_x, dev_v].iter().all(|z| z.is_finite()))
-            .then_some(r)
+        (co.c != 0.0
+            && [scale, p, q, offset, dev_x, dev_v]
+                .iter()
+                .all(|z| z.is_finite()))
+        .then_some(r)
     }
 
     /// The size of the terms that make up the acceleration at `s` (what its
