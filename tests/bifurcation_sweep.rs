@@ -3,16 +3,14 @@
 //! bifurcation, simulations of the branches' points, and the two defects of
 //! the natural-parameter sweep as regression tests.
 
+mod common;
+
 use std::process::Command;
 
-use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
-use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, Sweep, SweepOptions, TransitionKind};
-
-const TAU: f64 = 2.0 * std::f64::consts::PI;
 
 /// The period-doubling window of the issue: `W = 10.7…10.95`, `Q0 = 100`, `mu3 = 3`.
 fn pd_params() -> Params {
@@ -27,37 +25,7 @@ fn pd_sweep() -> Sweep {
     sweep::<Paper>(pd_params(), "W", 10.7, 10.95, 26, SweepOptions::default()).expect("sweep runs")
 }
 
-/// Simulate `periods` forcing periods from the first switching point of a
-/// motion of `structure` at `p` (and a hair more, so that an event due
-/// exactly at the end is seen): the number of events (grazes left out) and
-/// the phase and displacement of the last one.
-fn simulate(
-    p: Params,
-    structure: &Structure,
-    points: &[SwitchingPoint],
-    periods: u32,
-) -> (usize, f64, f64) {
-    let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("parameters");
-    let first = Paper::INFO.mappings[structure.steps()[0]];
-    let p0 = points[0];
-    let seg = Segment {
-        x: p0.x,
-        v: sim.velocity(first.from),
-        phase: p0.phase,
-        location: first.domain.map_or(Location::Stick, Location::Domain),
-        search_from: p0.phase,
-    };
-    let end = p0.phase + TAU * periods as f64;
-    let mut events = Vec::new();
-    sim.run(seg, end + 1e-6, |e| {
-        if e.kind != EventKind::Graze {
-            events.push(*e)
-        }
-    })
-    .expect("simulation runs");
-    let last = events.last().expect("an event");
-    (events.len(), last.phase - end, last.x)
-}
+use common::resimulate::from_first_point as simulate;
 
 #[test]
 fn a_period_doubling_is_one_classified_event_and_the_doubled_branch_is_followed() {

@@ -11,9 +11,10 @@
 //! two complex pairs). Each claim is checked independently: the `orbit`
 //! command on both sides and at the point, and event-driven simulation.
 
+mod common;
+
 use std::process::Command;
 
-use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
 use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::SwitchingPoint;
@@ -21,7 +22,6 @@ use stickslip::orbit::structure::Structure;
 use stickslip::output::sweep_table::runs;
 use stickslip::study::sweep::{sweep, Sweep, SweepOptions, TransitionKind};
 
-const TAU: f64 = 2.0 * std::f64::consts::PI;
 const SET: &str = "Q0=100,mu3=4.4";
 const STRUCTURE: &str = "P_{3_33 4_33}";
 
@@ -77,31 +77,11 @@ fn orbit(w: f64, guess: (f64, f64)) -> (Vec<SwitchingPoint>, Vec<[f64; 2]>, bool
     (points, ev, doc["stable"].as_bool().expect("stable"))
 }
 
-/// Simulate `periods` forcing periods from the first switching point (and a
-/// hair more): the number of events (grazes left out) and the phase offset
-/// and displacement of the last one.
+/// Simulate `periods` forcing periods from the first switching point of
+/// the motion ([`common::resimulate`]).
 fn simulate(p: Params, points: &[SwitchingPoint], periods: u32) -> (usize, f64, f64) {
     let st = Structure::parse(Paper::INFO, STRUCTURE, 1).expect("structure");
-    let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("parameters");
-    let first = Paper::INFO.mappings[st.steps()[0]];
-    let p0 = points[0];
-    let seg = Segment {
-        x: p0.x,
-        v: sim.velocity(first.from),
-        phase: p0.phase,
-        location: first.domain.map_or(Location::Stick, Location::Domain),
-        search_from: p0.phase,
-    };
-    let end = p0.phase + TAU * periods as f64;
-    let mut events = Vec::new();
-    sim.run(seg, end + 1e-6, |e| {
-        if e.kind != EventKind::Graze {
-            events.push(*e)
-        }
-    })
-    .expect("simulation runs");
-    let last = events.last().expect("an event");
-    (events.len(), last.phase - end, last.x)
+    common::resimulate::from_first_point(p, &st, points, periods)
 }
 
 fn modulus(e: &[f64; 2]) -> f64 {

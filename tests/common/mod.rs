@@ -15,6 +15,8 @@
 //! * `graze`: near-grazing starts for the paper model (test inputs).
 //! * `counting`: a counting global allocator for the allocation tests.
 //! * `reference`: the reference periodic motions of `../shared/reference/`.
+//! * `resimulate`: a periodic motion re-simulated by the library from its
+//!   first switching point.
 #![allow(dead_code)]
 
 pub mod counting;
@@ -22,6 +24,7 @@ pub mod dopri;
 pub mod events;
 pub mod graze;
 pub mod reference;
+pub mod resimulate;
 pub mod roots;
 pub mod taylor;
 
