@@ -371,13 +371,15 @@ def test_progress_follows_the_points(paper, monkeypatch, what):
 
     monkeypatch.setattr(progress, "Bar", Recorder)
     Recorder.made = []
+    # Each call long enough (well past the bar's first 0.1 s, on a fast
+    # machine too) for the bar to appear: a 40 x 40 basin grid stopped
+    # drawing one once the event search got faster.
     if what == "map":
-        # Long enough (about a second) for the bar to appear.
-        paper.map(x=("W", 0.2, 8, 40), y=("Q0", 0, 180, 40), method="simulation")
-        total = 1600
+        paper.map(x=("W", 0.2, 8, 80), y=("Q0", 0, 180, 80), method="simulation")
+        total = 6400
     else:
-        paper.basins(x=(-5, 5, 40), y=(-10, 10, 40), samples=400, **BASIN_SET)
-        total = 2000
+        paper.basins(x=(-5, 5, 150), y=(-10, 10, 150), samples=2500, **BASIN_SET)
+        total = 25000
     assert len(Recorder.made) == 1
     bar = Recorder.made[0]
     assert (bar.total, bar.what, bar.closed) == (total, what, True)
@@ -385,6 +387,6 @@ def test_progress_follows_the_points(paper, monkeypatch, what):
 
 
 def test_progress_draws_a_bar(paper, capfd):
-    paper.map(x=("W", 0.2, 8, 40), y=("Q0", 0, 180, 40), method="simulation")
+    paper.map(x=("W", 0.2, 8, 80), y=("Q0", 0, 180, 80), method="simulation")
     err = capfd.readouterr().err
-    assert "map" in err and "1600" in err
+    assert "map" in err and "6400" in err
