@@ -3,8 +3,8 @@
 //!
 //! In domain `j` the motion solves `x'' + 2 d_j x' + c_j x = A0 cos(W t) − b_j`
 //! (the domain's [`Coefficients`]). It is the forced response
-//! `x_p(φ) = −b_j / c_j + P cos φ + Q sin φ`, with
-//! `(P, Q) = A0 (c_j − W², 2 d_j W) / ((c_j − W²)² + (2 d_j W)²)`, plus the
+//! `x_p(φ) = −b_j / c_j + P cos φ + Q sin φ`
+//! ([`Coefficients::forced_response`]), plus the
 //! homogeneous motion from the start's deviation `(X, Y) = (x0 − x_p, v0 − v_p)`
 //! at `φ0`: `x = x_p + Ec X + Es (Y + d_j X)`, `v = v_p + Ec Y − Es (c_j X + d_j Y)`,
 //! `(Ec, Es)` of [`homogeneous::general`] at the elapsed time `(φ − φ0) / W`.
@@ -16,7 +16,7 @@
 //! another `sincos`).
 
 use crate::model::homogeneous;
-use crate::model::{Coefficients, Oscillator};
+use crate::model::{Coefficients, ForcedResponse, Oscillator};
 
 /// The motion of a segment in one domain, ready to be evaluated at any phase.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,12 +55,11 @@ impl Response {
     /// not finite: the caller then evaluates the generated flow.
     pub fn new(co: Coefficients, osc: Oscillator, x0: f64, v0: f64, phi0: f64) -> Option<Self> {
         let w = osc.frequency;
-        let detuning = co.c - w * w;
-        let damping = w * co.two_d;
-        let scale = 1.0 / (detuning * detuning + damping * damping);
-        let p = osc.amplitude * detuning * scale;
-        let q = osc.amplitude * damping * scale;
-        let offset = -co.b / co.c;
+        let ForcedResponse {
+            cos: p,
+            sin: q,
+            offset,
+        } = co.forced_response(&osc);
         let (s0, c0) = phi0.sin_cos();
         let dev_x = x0 - (offset + (p * c0 + q * s0));
         let dev_v = v0 - w * (q * c0 - p * s0);
@@ -78,11 +77,7 @@ impl Response {
             dev_v,
             phi0,
         };
-        (co.c != 0.0
-            && [scale, p, q, offset, dev_x, dev_v]
-                .iter()
-                .all(|z| z.is_finite()))
-        .then_some(r)
+        (co.c != 0.0 && [p, q, offset, dev_x, dev_v].iter().all(|z| z.is_finite())).then_some(r)
     }
 
     /// The size of the terms that make up the acceleration at `s` (what its

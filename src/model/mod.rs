@@ -50,7 +50,7 @@ pub mod smooth;
 pub use info::{
     Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo, Side,
 };
-pub use oscillator::{Coefficients, FrictionOscillator, Oscillator, Regime};
+pub use oscillator::{Coefficients, ForcedResponse, FrictionOscillator, Oscillator, Regime};
 pub use param::{ParamError, ParamSet};
 pub use piecewise::{MappingEval, Model, StickForces};
 pub use registry::{Entry, ModelVisitor};

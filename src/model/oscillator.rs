@@ -44,6 +44,35 @@ impl Coefficients {
     pub fn regime(&self) -> Regime {
         Regime::classify(self.two_d, self.c)
     }
+
+    /// The forced (particular) response of this domain's equation under the
+    /// oscillator's forcing, `x_p(φ) = cos · cos φ + sin · sin φ + offset`
+    /// with `(cos, sin) = A0 (c_j − W², 2 d_j W) / ((c_j − W²)² + (2 d_j W)²)`
+    /// and `offset = −b_j / c_j` (SPEC Appendix A). Not finite where it does
+    /// not exist (`c_j = 0`, undamped resonance).
+    pub fn forced_response(&self, osc: &Oscillator) -> ForcedResponse {
+        let w = osc.frequency;
+        let detuning = self.c - w * w;
+        let damping = self.two_d * w;
+        let den = detuning * detuning + damping * damping;
+        ForcedResponse {
+            cos: osc.amplitude * detuning / den,
+            sin: damping * osc.amplitude / den,
+            offset: -self.b / self.c,
+        }
+    }
+}
+
+/// The forced response of a domain ([`Coefficients::forced_response`]):
+/// `x_p(φ) = cos · cos φ + sin · sin φ + offset`, `φ = W t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForcedResponse {
+    /// The cosine coefficient.
+    pub cos: f64,
+    /// The sine coefficient.
+    pub sin: f64,
+    /// The constant part, `−b_j / c_j`.
+    pub offset: f64,
 }
 
 /// The linear part of the oscillator: `x'' + 2 damping x' + stiffness x = amplitude cos(frequency t) - f(x')`.

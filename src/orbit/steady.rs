@@ -27,18 +27,14 @@ pub fn steady_response<M: Model>(p: &M::Params, j: usize) -> Option<SteadyRespon
     let co = M::coefficients(p, j);
     let osc = M::oscillator(p);
     let d = 0.5 * co.two_d;
-    let c = co.c;
     if d.is_nan() || d <= 0.0 {
         return None;
     }
-    let w = osc.frequency;
-    let den = (c - w * w).powi(2) + (2.0 * d * w).powi(2);
-    let a = osc.amplitude * (c - w * w) / den;
-    let b = 2.0 * d * w * osc.amplitude / den;
+    let f = co.forced_response(&osc);
     Some(SteadyResponse {
-        a,
-        b,
-        offset: -co.b / c,
-        max_v: w * a.hypot(b),
+        a: f.cos,
+        b: f.sin,
+        offset: f.offset,
+        max_v: osc.frequency * f.cos.hypot(f.sin),
     })
 }
