@@ -272,6 +272,58 @@ fn the_curves_run_starts_the_stick_end_curve() {
         "{:?}",
         xs.iter().map(|x| x.x).collect::<Vec<_>>()
     );
+    // The grazing of Σ1 (the belt's velocity) by `P_{3_31 0_11 3_13 4_33}`
+    // ends where the velocity maximum before the arrival on Σ1 leaves the
+    // segment through that arrival as the arrival turns tangential, with
+    // the stick-onset force there (beyond, the maximum and the minimum
+    // after it are gone, and with them the grazing margin). That is a
+    // codimension-two end, a passable onset on Σ1, whichever side of it the
+    // last bits put the corrector's last point. Independently of the
+    // tracer: at that end the motion's own conditions (`conditions`, with
+    // the event search) give a stick-onset margin of zero to 1e-6.
+    let grazing = curves
+        .iter()
+        .find(|c| {
+            c.kind == TransitionKind::Grazing
+                && c.structure
+                    .as_ref()
+                    .map(|s| s.notation(Paper::INFO))
+                    .as_deref()
+                    == Some("P_{3_31 0_11 3_13 4_33}")
+                && c.ends
+                    .iter()
+                    .any(|e| (e.at.x - 2.66697).abs() < 1e-4 && (e.at.y - 192.125).abs() < 1e-2)
+        })
+        .expect("the grazing curve of P_{3_31 0_11 3_13 4_33} ending near (2.66697, 192.125)");
+    let end = grazing
+        .ends
+        .iter()
+        .find(|e| (e.at.x - 2.66697).abs() < 1e-4)
+        .expect("that end");
+    assert!(
+        matches!(
+            end.reason,
+            CurveEndReason::Codim2 {
+                kind: TransitionKind::PassableOnset,
+                boundary: Some(1),
+            }
+        ),
+        "{:?}",
+        end.reason
+    );
+    let sim = stickslip::dynamics::simulate::Simulator::<Paper>::new(
+        at(end.at.x, end.at.y),
+        Default::default(),
+    )
+    .expect("params");
+    let s = grazing.structure.as_ref().expect("a motion's curve");
+    let margins = stickslip::orbit::admissible::conditions(&sim, s, &end.at.points);
+    let onset = margins
+        .iter()
+        .filter(|m| m.kind == ViolationKind::StickOnset)
+        .map(|m| m.margin.abs())
+        .fold(f64::INFINITY, f64::min);
+    assert!(onset < 1e-6, "stick-onset margin {onset:e} at the end");
     for c in &curves {
         for e in &c.ends {
             assert!(

@@ -67,6 +67,11 @@ pub(super) struct Tracer<'a, M: Model> {
 
 const NEWTON_ITERATIONS: usize = 12;
 
+/// How many smallest steps beyond the last point a vanishing other margin
+/// may reach zero for a corrector failure there to be a codimension-two
+/// end ([`Tracer::vanishing_other`]).
+const CODIM2_REACH: f64 = 16.0;
+
 impl<M: Model> Tracer<'_, M> {
     /// Everything watched at a corrected point `x` with tangent `t`.
     pub fn examine(&mut self, x: Vec<f64>, t: Vec<f64>) -> Result<Sample, String> {
@@ -307,6 +312,36 @@ impl<M: Model> Tracer<'_, M> {
         None
     }
 
+    /// Where the corrector fails even at the smallest step, whether the
+    /// curve has run into a codimension-two point it cannot step past: the
+    /// smallest other margin falls towards zero along the last steps and
+    /// would reach it within [`CODIM2_REACH`] smallest steps beyond `prev`.
+    /// There the curve's own condition stops existing as the other one
+    /// vanishes (a grazing extremum that leaves the segment through its
+    /// arrival as that arrival turns tangential: no extremum, no grazing
+    /// margin, beyond), so no candidate with the other margin `<= 0` is
+    /// ever accepted for [`Self::codim2`] to locate. `None`: a plain
+    /// failure.
+    fn vanishing_other(&self, points: &[Sample], prev: &Sample) -> Option<CurveEndReason> {
+        let before = points.len().checked_sub(2).map(|i| &points[i])?;
+        let (o0, o1) = (before.other, prev.other);
+        if !(o0.is_finite() && o1.is_finite() && o1 >= 0.0 && o1 < o0) {
+            return None;
+        }
+        let step = self.sys.distance(&prev.x, &before.x);
+        // Linear extrapolation of the margin along the last step.
+        let reach = o1 * step / (o0 - o1);
+        if !(reach <= CODIM2_REACH * self.opts.min_step) {
+            return None;
+        }
+        let (kind, boundary) = prev
+            .worst
+            .map_or((TransitionKind::Grazing, None), |(k, b)| {
+                (transition_kind(k), b)
+            });
+        Some(CurveEndReason::Codim2 { kind, boundary })
+    }
+
     fn out_of_box(&self, x: &[f64]) -> bool {
         let n = x.len();
         let (a, b) = (x[n - 2], x[n - 1]);
@@ -404,10 +439,14 @@ impl<M: Model> Tracer<'_, M> {
                     continue;
                 }
                 Err(why) => {
+                    let reason = match self.vanishing_other(&points, &prev) {
+                        Some(reason) => reason,
+                        None => CurveEndReason::NewtonFailure(why),
+                    };
                     return Run {
                         points,
                         special,
-                        end: Some((CurveEndReason::NewtonFailure(why), prev)),
+                        end: Some((reason, prev)),
                     };
                 }
             };
