@@ -27,10 +27,11 @@
 use std::sync::OnceLock;
 
 use stickslip::bifurcation::curve::{
-    condition_value, crossings, Curve, CurveOptions, CurvePoint, Line, Plane,
+    condition_value, crossings, Condition, Curve, CurveOptions, CurvePoint, Line, Plane,
 };
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
+use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, Termination};
 use stickslip::study::curves::{traced, CurveSet, CurvesOptions, CurvesSettings};
@@ -96,15 +97,26 @@ fn resolved(plane: &Plane, curve: &Curve, point: &CurvePoint) -> Result<(f64, f6
             max_iterations: 60,
         },
     );
-    if !m.termination.converged() {
-        // On a grazing of an arrival the elimination is singular at the
-        // curve itself: check the point's own residual instead.
+    // On a grazing of an arrival (or a departure) the elimination is
+    // singular at the curve itself: Newton there either says so or, with a
+    // residual at rounding, moves the points by about the square root of
+    // it (1e-8), and the condition with them. Check the point's own
+    // residual and condition instead.
+    let tangency = matches!(
+        curve.condition,
+        Condition::Margin {
+            kind: ViolationKind::Arrival | ViolationKind::Departure,
+            ..
+        }
+    );
+    if !m.termination.converged() || tangency {
         let p = at(plane, point.x, point.y);
         let solver = PeriodicSolver::<Paper>::new(structure.clone());
         let r = solver.residual(&p, &point.points);
         let l = PeriodicSolver::<Paper>::length_scale(&p, &point.points);
         let w = p.get(plane.x).abs().max(1.0);
-        if !matches!(m.termination, Termination::Singular { .. }) || r > 1e-10 * l * w {
+        if !(tangency || matches!(m.termination, Termination::Singular { .. })) || r > 1e-10 * l * w
+        {
             return Err(format!("Newton: {:?} (residual {r:e})", m.termination));
         }
         let v = condition_value::<Paper>(&base, plane, Some(structure), point, curve.condition)

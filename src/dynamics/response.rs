@@ -80,12 +80,6 @@ impl Response {
         (co.c != 0.0 && [p, q, offset, dev_x, dev_v].iter().all(|z| z.is_finite())).then_some(r)
     }
 
-    /// The size of the terms that make up the acceleration at `s` (what its
-    /// rounding is relative to).
-    pub fn acceleration_scale(&self, s: &State) -> f64 {
-        self.amplitude.abs() + self.b.abs() + (self.c * s.x).abs() + (self.two_d * s.v).abs()
-    }
-
     /// The state at phase `phi`. Allocates nothing.
     #[inline]
     pub fn at(&self, phi: f64) -> State {

@@ -39,21 +39,6 @@ pub(crate) struct SegmentFlow {
     forcing: f64,
 }
 
-/// How the refinement of a zero of the acceleration ends.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Settle {
-    /// As soon as Newton's correction is below the rounding of the phase:
-    /// the zero to the phase's resolution (a motion's admissibility, which
-    /// needs only the margins' signs).
-    AtRounding,
-    /// Such a correction rounds to the iterate, which is then an end of the
-    /// bracket; Newton is refused there and bisection goes on until the
-    /// bracket is a few ulps wide (the margins of a sweep: its located
-    /// transitions depend on the margins' last bits, and these bits are
-    /// those of the sampled search it was built against).
-    Bisected,
-}
-
 /// Deepest halving of a piece before a sign test decides (the piece is then
 /// 2^-48 of the segment: a double zero of `a`, a tangency of `v`'s extremum).
 const MAX_DEPTH: u32 = 48;
@@ -88,22 +73,14 @@ impl SegmentFlow {
         self.response.at(phi)
     }
 
-    /// The size of the terms that make up the acceleration at `s` (what
-    /// its rounding is relative to).
-    pub fn acceleration_scale(&self, s: &FlowState) -> f64 {
-        self.response.acceleration_scale(s)
-    }
-
     /// Every zero of the acceleration on `[lo, hi]` (phases), in increasing
-    /// order, each passed to `on_zero` with its phase (refined to rounding)
-    /// and the state there. Returns the number of evaluations made.
-    ///
-    /// `settle`: how a zero's refinement ends ([`Settle`]).
+    /// order, each passed to `on_zero` with its phase (refined until
+    /// Newton's correction is below the rounding of the phase) and the state
+    /// there. Returns the number of evaluations made.
     pub fn acceleration_zeros(
         &self,
         lo: f64,
         hi: f64,
-        settle: Settle,
         mut on_zero: impl FnMut(f64, &FlowState),
     ) -> usize {
         let mut evals = 0usize;
@@ -143,7 +120,7 @@ impl SegmentFlow {
                 evals += 1;
                 cached = Some((p1, s1));
                 if (s0.a > 0.0) != (s1.a > 0.0) {
-                    let (phi, st, n) = self.refine(p0, p1, s0.a, m, mid, settle);
+                    let (phi, st, n) = self.refine(p0, p1, s0.a, m, mid);
                     evals += n;
                     on_zero(phi, &st);
                 }
@@ -166,7 +143,6 @@ impl SegmentFlow {
         a_lo: f64,
         mut s: FlowState,
         start: f64,
-        settle: Settle,
     ) -> (f64, FlowState, usize) {
         let mut t = start;
         let mut evals = 0;
@@ -178,7 +154,9 @@ impl SegmentFlow {
             }
             let newton = t - s.a * self.w / s.da;
             let resolution = 4.0 * f64::EPSILON * t.abs().max(1.0);
-            if settle == Settle::AtRounding && s.da != 0.0 && (newton - t).abs() <= resolution {
+            // A correction below the phase's rounding: converged (it would
+            // round to the iterate, an end of the bracket).
+            if s.da != 0.0 && (newton - t).abs() <= resolution {
                 break;
             }
             let next = if s.da != 0.0 && newton > lo && newton < hi {

@@ -144,6 +144,24 @@ impl<M: Model> Evaluator<M> {
                 self.excluded_len += 1;
             }
         }
+        // A departure or arrival tangential all along the curve puts the
+        // velocity's extremum at that end of the segment: whether rounding
+        // places it just inside (an interior contact of that boundary, margin
+        // zero) or just outside (none) changes from point to point. It is
+        // the same event as the tangency, not a second condition.
+        for i in 0..self.excluded_len {
+            if let (ViolationKind::Arrival | ViolationKind::Departure, segment, Some(b)) =
+                self.excluded[i]
+            {
+                let id = (ViolationKind::Interior, segment, Some(b));
+                if self.excluded_len < MAX_EXCLUDED
+                    && !self.excluded[..self.excluded_len].contains(&id)
+                {
+                    self.excluded[self.excluded_len] = id;
+                    self.excluded_len += 1;
+                }
+            }
+        }
     }
 
     /// The condition's value at `(points, p)`: zero on the curve, NaN

@@ -10,14 +10,13 @@
 //! run only where a margin is too small for the closed form to decide alone.
 //! The text of a condition is written only when it is violated.
 //!
-//! An extremum's value is taken where the former sampled search puts it
-//! (so that the margins the located transitions depend on keep their last
-//! bits), except for [`violations`], where only the signs matter: there it
-//! is the closed form's value at its zero of the acceleration.
+//! Every extremum's value is the closed form's at its zero of the
+//! acceleration: the margins are smooth functions of the points, equal to
+//! rounding to an independent dense search (`tests/margins.rs`).
 
 use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
 use crate::model::{MappingKind, Model, Side};
-use crate::orbit::extrema::{SegmentFlow, Settle};
+use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
@@ -34,113 +33,6 @@ fn phase_tol(phase: f64) -> f64 {
     1e-7 * phase.abs().max(1.0)
 }
 
-/// Samples per segment of the sampled search for velocity extrema whose
-/// values the margins reproduce (see [`InteriorMargin`]).
-const SAMPLES: usize = 24;
-
-/// The sampled search for the extrema of `v` on a segment that the margins
-/// were first computed with: samples `seg.phase + i h`, `i = 0..=24`, of
-/// the acceleration from the generated flow and vector field, each sign
-/// change refined by safeguarded Newton.
-struct SampledSearch<'a, M: Model> {
-    sim: &'a Simulator<M>,
-    seg: &'a Segment,
-    j: usize,
-    h: f64,
-}
-
-impl<M: Model> SampledSearch<'_, M> {
-    fn accel(&self, phi: f64) -> [f64; 2] {
-        let (x, v) = self.sim.state_at(self.seg, phi);
-        M::normal_field(self.sim.params(), self.j, x, v, phi)
-    }
-
-    fn sample(&self, i: usize) -> f64 {
-        if i == 0 {
-            self.accel(self.seg.phase)[0]
-        } else {
-            self.accel(self.seg.phase + self.h * i as f64)[0]
-        }
-    }
-
-    /// The sample interval `(seg.phase + (i − 1) h, seg.phase + i h]` of `t`.
-    fn interval(&self, t: f64) -> usize {
-        let i = ((t - self.seg.phase) / self.h).ceil();
-        if i >= 1.0 {
-            (i as usize).min(SAMPLES)
-        } else {
-            1
-        }
-    }
-
-    /// The sign of the sampled acceleration at sample `i` (`true`:
-    /// positive), from the closed form `flow` where it is clear of zero.
-    fn positive(&self, flow: Option<&SegmentFlow>, i: usize) -> bool {
-        let phi = if i == 0 {
-            self.seg.phase
-        } else {
-            self.seg.phase + self.h * i as f64
-        };
-        if let Some(s) = flow.map(|f| f.at(phi)) {
-            // Far above the rounding of either computation of `a`.
-            if s.a.abs() > 1e-9 * flow.map_or(0.0, |f| f.acceleration_scale(&s)) {
-                return s.a > 0.0;
-            }
-        }
-        self.sample(i) > 0.0
-    }
-
-    /// Where the sampled search puts the extremum at `t`, found in sample
-    /// interval `i` (or a neighbour, if `t` is within rounding of a sample):
-    /// `None` if no sign change of the sampled acceleration brackets it.
-    fn extremum(&self, flow: Option<&SegmentFlow>, t: f64, i: usize) -> Option<f64> {
-        for i in [i, i - 1, i + 1] {
-            if i == 0 || i > SAMPLES {
-                continue;
-            }
-            let phi = self.seg.phase + self.h * i as f64;
-            if !(t >= phi - 2.0 * self.h && t <= phi + self.h) {
-                continue;
-            }
-            let (prev, a) = (self.positive(flow, i - 1), self.positive(flow, i));
-            let prev = if prev { 1.0 } else { -1.0 };
-            let a = if a { 1.0 } else { -1.0 };
-            if (a > 0.0) != (prev > 0.0) {
-                return Some(self.refine(phi, prev));
-            }
-        }
-        None
-    }
-
-    /// Safeguarded Newton on the acceleration in `[phi − h, phi]` (its rate
-    /// in phase is `DF / W`), from the middle.
-    fn refine(&self, phi: f64, prev: f64) -> f64 {
-        let w = self.sim.oscillator().frequency;
-        let (mut lo, mut hi) = (phi - self.h, phi);
-        let mut t = 0.5 * (lo + hi);
-        for _ in 0..50 {
-            let [at, rate] = self.accel(t);
-            if (at > 0.0) == (prev > 0.0) {
-                lo = t;
-            } else {
-                hi = t;
-            }
-            let newton = t - at * w / rate;
-            let next = if rate != 0.0 && newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            if (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0) {
-                t = next;
-                break;
-            }
-            t = next;
-        }
-        t
-    }
-}
-
 /// The smallest signed distance, over the open segment `(seg.phase, end)`,
 /// from the velocity of the flow in domain `j` to the domain's boundaries
 /// (positive: strictly inside), with the boundary where it is smallest: for
@@ -149,61 +41,35 @@ impl<M: Model> SampledSearch<'_, M> {
 /// infimum: the extrema and the ends). `None` when no extremum and no other
 /// boundary count.
 ///
-/// The extrema are the zeros of the acceleration, all of them, passed in
-/// increasing order to [`InteriorMargin::extremum`]. Each one's value is
-/// taken where the sampled search ([`SampledSearch`]) puts it when that
-/// search finds it alone in its sample interval, so that the margins are
-/// those of that search to the last bit (the located transitions of a
-/// sweep depend on them); an extremum it would miss (two in one sample
-/// interval) is taken where the closed form puts it.
+/// The extrema are the zeros of the acceleration, all of them, passed to
+/// [`InteriorMargin::extremum`] with the closed form's velocity there.
 struct InteriorMargin<'a, M: Model> {
-    sampled: SampledSearch<'a, M>,
-    flow: Option<SegmentFlow>,
+    sim: &'a Simulator<M>,
+    j: usize,
     touched: [usize; 2],
     best: Option<(f64, usize)>,
-    /// The last extremum seen, its sample interval, and whether another
-    /// extremum shares that interval.
-    pending: Option<(f64, usize, bool)>,
-    /// Take every extremum's value from the closed form (no re-location).
-    closed_form: bool,
 }
 
 impl<'a, M: Model> InteriorMargin<'a, M> {
-    fn new(
-        sim: &'a Simulator<M>,
-        seg: &'a Segment,
-        end: f64,
-        touched: [usize; 2],
-        j: usize,
-        flow: Option<SegmentFlow>,
-        closed_form: bool,
-    ) -> Self {
+    fn new(sim: &'a Simulator<M>, touched: [usize; 2], j: usize) -> Self {
         Self {
-            closed_form,
-            flow,
-            sampled: SampledSearch {
-                sim,
-                seg,
-                j,
-                h: (end - seg.phase) / SAMPLES as f64,
-            },
+            sim,
+            j,
             touched,
             best: None,
-            pending: None,
         }
     }
 
     fn consider(&mut self, v: f64, extremum: bool) {
-        let sim = self.sampled.sim;
-        let dom = M::INFO.domains[self.sampled.j];
+        let dom = M::INFO.domains[self.j];
         for k in [dom.lower, dom.upper].into_iter().flatten() {
             if !extremum && self.touched.contains(&k) {
                 continue;
             }
             let margin = if Some(k) == dom.lower {
-                v - sim.velocity(k)
+                v - self.sim.velocity(k)
             } else {
-                sim.velocity(k) - v
+                self.sim.velocity(k) - v
             };
             if self.best.is_none_or(|(m, _)| margin < m) {
                 self.best = Some((margin, k));
@@ -211,48 +77,16 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         }
     }
 
-    fn settle(&mut self, (t, i, crowded): (f64, usize, bool)) {
-        let at = if crowded {
-            None
-        } else {
-            self.sampled.extremum(self.flow.as_ref(), t, i)
-        };
-        let v = self
-            .sampled
-            .sim
-            .state_at(self.sampled.seg, at.unwrap_or(t))
-            .1;
+    /// The next extremum of `v` (a zero of the acceleration), where the
+    /// closed form gives the velocity `v`.
+    fn extremum(&mut self, v: f64) {
         self.consider(v, true);
     }
 
-    /// The next extremum of `v` (a zero of the acceleration) at phase `t`,
-    /// where the closed form gives the velocity `v`.
-    fn extremum(&mut self, t: f64, v: f64) {
-        if self.closed_form {
-            self.consider(v, true);
-            return;
-        }
-        let i = self.sampled.interval(t);
-        self.pending = match self.pending.take() {
-            Some((u, iu, _)) if iu == i => {
-                self.settle((u, iu, true));
-                Some((t, i, true))
-            }
-            Some(z) => {
-                self.settle(z);
-                Some((t, i, false))
-            }
-            None => Some((t, i, false)),
-        };
-    }
-
-    /// The margin, given the velocity at the segment's end.
-    fn finish(mut self, end_v: f64) -> Option<(f64, usize)> {
-        if let Some(z) = self.pending.take() {
-            self.settle(z);
-        }
+    /// The margin, given the velocities at the segment's start and end.
+    fn finish(mut self, start_v: f64, end_v: f64) -> Option<(f64, usize)> {
         // The ends, for the boundaries not touched.
-        self.consider(self.sampled.seg.v, false);
+        self.consider(start_v, false);
         self.consider(end_v, false);
         self.best
     }
@@ -293,7 +127,7 @@ fn check_flow<M: Model>(
     dep: f64,
     mut margin: InteriorMargin<'_, M>,
 ) -> FlowCheck {
-    let j = margin.sampled.j;
+    let j = margin.j;
     let dom = M::INFO.domains[j];
     let co = sim.coefficients(j);
     let osc = sim.oscillator();
@@ -309,21 +143,16 @@ fn check_flow<M: Model>(
     // Closer than this to a boundary, the event search decides.
     let near = (100.0 * sim.options().graze_tol).max(1e-9 * vscale);
     let mut clear = true;
-    let settle = if margin.closed_form {
-        Settle::AtRounding
-    } else {
-        Settle::Bisected
-    };
-    flow.acceleration_zeros(seg.phase, b + tol, settle, |t, s| {
+    flow.acceleration_zeros(seg.phase, b + tol, |t, s| {
         if t > b {
             clear = false;
             return;
         }
-        margin.extremum(t, s.v);
+        margin.extremum(s.v);
         clear &= lo.is_none_or(|l| s.v - l > near) && hi.is_none_or(|h| h - s.v > near);
     });
     let e = flow.at(b);
-    let interior = margin.finish(e.v);
+    let interior = margin.finish(seg.v, e.v);
     let vb = sim.velocity(to);
     let out = if dom.upper == Some(to) { 1.0 } else { -1.0 };
     let ascale = osc.amplitude.abs()
@@ -430,7 +259,6 @@ fn walk<M: Model>(
     let label = |k: usize| info.boundaries[k].label;
     // Each margin as a smooth function of the points: no event search.
     let smooth = out.smooth();
-    let closed_form = out.closed_form_extrema();
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
         let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
@@ -564,19 +392,14 @@ fn walk<M: Model>(
                     location: Location::Domain(j),
                     search_from: a.phase,
                 };
-                let check = SegmentFlow::new(
-                    sim.oscillator(),
-                    sim.coefficients(j),
-                    a.x,
-                    va,
-                    a.phase,
-                )
-                .map(|f| {
-                    let ends = [mi.from, mi.to];
-                    let margin =
-                        InteriorMargin::new(sim, &seg, b.phase, ends, j, Some(f), closed_form);
-                    check_flow(sim, &f, &seg, mi.to, b.phase, into * acc0, margin)
-                });
+                let check =
+                    SegmentFlow::new(sim.oscillator(), sim.coefficients(j), a.x, va, a.phase).map(
+                        |f| {
+                            let ends = [mi.from, mi.to];
+                            let margin = InteriorMargin::new(sim, ends, j);
+                            check_flow(sim, &f, &seg, mi.to, b.phase, into * acc0, margin)
+                        },
+                    );
                 // A flow the closed form cannot follow has no margin.
                 let interior = || match &check {
                     Some(c) => c.interior,

@@ -78,17 +78,6 @@ pub(super) trait Sink {
     fn smooth(&self) -> bool {
         false
     }
-
-    /// Whether each velocity extremum's value may be taken where the closed
-    /// form puts it ([`crate::orbit::extrema`]), equal to rounding to the
-    /// value the former sampled search gives. `false` for the margins whose
-    /// last bits the located transitions of sweeps and curves depend on
-    /// ([`super::conditions`], [`super::worst_margin`] and the curves'
-    /// conditions); `true` where only which conditions are violated matters
-    /// ([`super::violations`]: a motion's admissibility).
-    fn closed_form_extrema(&self) -> bool {
-        false
-    }
 }
 
 impl Sink for Vec<Violation> {
@@ -115,10 +104,6 @@ impl Sink for Vec<Violation> {
 pub(super) struct Violated(pub(super) Vec<Violation>);
 
 impl Sink for Violated {
-    fn closed_form_extrema(&self) -> bool {
-        true
-    }
-
     fn add(
         &mut self,
         segment: usize,
