@@ -331,7 +331,7 @@ impl<M: Model> Tracer<'_, M> {
         let step = self.sys.distance(&prev.x, &before.x);
         // Linear extrapolation of the margin along the last step.
         let reach = o1 * step / (o0 - o1);
-        if !(reach <= CODIM2_REACH * self.opts.min_step) {
+        if reach.is_nan() || reach > CODIM2_REACH * self.opts.min_step {
             return None;
         }
         let (kind, boundary) = prev
