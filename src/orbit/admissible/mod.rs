@@ -15,7 +15,9 @@
 //! bits), except for [`violations`], where only the signs matter: there it
 //! is the closed form's value at its zero of the acceleration.
 
-use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
+use crate::dynamics::simulate::{
+    Event, EventKind, Location, Segment, SimError, Simulator, MAX_STEPS_PER_PERIOD,
+};
 use crate::model::{MappingKind, Model, Side};
 use crate::orbit::extrema::{SegmentFlow, Settle};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
@@ -161,6 +163,10 @@ struct InteriorMargin<'a, M: Model> {
     flow: Option<SegmentFlow>,
     touched: [usize; 2],
     best: Option<(f64, usize)>,
+    /// The smallest margin on the domain's lower and upper boundary alone
+    /// (infinite where none counts): which boundary the closed form puts
+    /// the flow near, for [`FlowCheck::keeps_off`].
+    sides: [f64; 2],
     /// The last extremum seen, its sample interval, and whether another
     /// extremum shares that interval.
     pending: Option<(f64, usize, bool)>,
@@ -189,6 +195,7 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
             },
             touched,
             best: None,
+            sides: [f64::INFINITY; 2],
             pending: None,
         }
     }
@@ -196,17 +203,22 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
     fn consider(&mut self, v: f64, extremum: bool) {
         let sim = self.sampled.sim;
         let dom = M::INFO.domains[self.sampled.j];
-        for k in [dom.lower, dom.upper].into_iter().flatten() {
+        for (side, k) in [dom.lower, dom.upper].into_iter().enumerate() {
+            let Some(k) = k else { continue };
             if !extremum && self.touched.contains(&k) {
                 continue;
             }
-            let margin = if Some(k) == dom.lower {
+            let margin = if side == 0 {
                 v - sim.velocity(k)
             } else {
                 sim.velocity(k) - v
             };
             if self.best.is_none_or(|(m, _)| margin < m) {
                 self.best = Some((margin, k));
+            }
+            // NaN stays (it is no proof of anything).
+            if !(margin >= self.sides[side]) {
+                self.sides[side] = margin;
             }
         }
     }
@@ -246,15 +258,16 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         };
     }
 
-    /// The margin, given the velocity at the segment's end.
-    fn finish(mut self, end_v: f64) -> Option<(f64, usize)> {
+    /// The margin, given the velocity at the segment's end, and the
+    /// smallest margins on the lower and upper boundary alone.
+    fn finish(mut self, end_v: f64) -> (Option<(f64, usize)>, [f64; 2]) {
         if let Some(z) = self.pending.take() {
             self.settle(z);
         }
         // The ends, for the boundaries not touched.
         self.consider(self.sampled.seg.v, false);
         self.consider(end_v, false);
-        self.best
+        (self.best, self.sides)
     }
 }
 
@@ -278,6 +291,61 @@ struct FlowCheck {
     /// the mapping's target within the phase tolerance (where the event
     /// search would find it): every margin is clear of zero.
     arrives: bool,
+    /// The domain's lower and upper boundary (indices), each with the
+    /// smallest margin of the closed form on it alone (infinite: none
+    /// counts), and the band within which the event search decides
+    /// (`near` of [`check_flow`]).
+    sides: [(Option<usize>, f64); 2],
+    near: f64,
+}
+
+impl FlowCheck {
+    /// Whether the closed form keeps the flow strictly inside, off boundary
+    /// `k`, by a margin within the band where the event search is asked
+    /// (see [`first_contact`]).
+    fn keeps_off(&self, k: usize) -> bool {
+        self.sides
+            .iter()
+            .any(|&(b, m)| b == Some(k) && m > 0.0 && m <= self.near)
+    }
+}
+
+/// The first boundary contact of the flow of `seg` before `limit` that is
+/// not a graze the closed form puts strictly inside (`check`): such a graze
+/// is a touch within the event search's graze tolerance (`|v − V_k|` at the
+/// extremum below `graze_tol`) of an extremum that the closed form, exact
+/// to rounding, keeps off the boundary by a positive margin. The margin is
+/// then the closed form's, positive, like on either side of that tolerance
+/// band: were the graze taken as an early contact (margin 0), the margin a
+/// sweep locates its transition on would be 0 on a band of width
+/// `graze_tol` above its zero, and the located root the edge of that band
+/// where the event search's classification flips (grid-dependent, about
+/// `graze_tol / |dm/dλ|` off the zero of the smooth margin, which is the
+/// two-parameter curve's). The event search still decides which boundary is
+/// crossed first: it goes on past such a graze.
+fn first_contact<M: Model>(
+    sim: &Simulator<M>,
+    seg: &Segment,
+    limit: f64,
+    early: impl Fn(&Event) -> bool,
+    check: Option<&FlowCheck>,
+) -> Result<Option<(Event, Segment)>, SimError> {
+    let mut seg = *seg;
+    // One graze per extremum (the search resumes past each): a segment has
+    // few; the bound only keeps a pathological one finite.
+    for _ in 0..16 {
+        match sim.next_event(&seg, limit)? {
+            Some((e, next))
+                if e.kind == EventKind::Graze
+                    && early(&e)
+                    && check.is_some_and(|c| c.keeps_off(e.boundary)) =>
+            {
+                seg = next;
+            }
+            other => return Ok(other),
+        }
+    }
+    sim.next_event(&seg, limit)
 }
 
 /// The interior margin of the flow of `seg` to phase `b` on boundary `to`
@@ -323,7 +391,7 @@ fn check_flow<M: Model>(
         clear &= lo.is_none_or(|l| s.v - l > near) && hi.is_none_or(|h| h - s.v > near);
     });
     let e = flow.at(b);
-    let interior = margin.finish(e.v);
+    let (interior, sides) = margin.finish(e.v);
     let vb = sim.velocity(to);
     let out = if dom.upper == Some(to) { 1.0 } else { -1.0 };
     let ascale = osc.amplitude.abs()
@@ -341,7 +409,12 @@ fn check_flow<M: Model>(
         && out * e.a > 1e-9 * ascale
         && (e.v - vb).abs() * w <= 1e-3 * tol * e.a.abs()
         && [e.x, e.v, e.a].iter().all(|v| v.is_finite());
-    FlowCheck { interior, arrives }
+    FlowCheck {
+        interior,
+        arrives,
+        sides: [(dom.lower, sides[0]), (dom.upper, sides[1])],
+        near,
+    }
 }
 
 /// Every condition of SPEC §6 for `points` of `structure`, with its margin;
@@ -585,16 +658,15 @@ fn walk<M: Model>(
                 // The arrival on β is the first boundary contact: certain from
                 // the closed form when every margin is clear of zero, else
                 // the event search decides.
+                let tol = phase_tol(b.phase);
+                let early = |e: &Event| e.phase < b.phase - tol || e.boundary != mi.to;
                 let event = match &check {
                     Some(c) if c.arrives || smooth => None,
-                    _ => Some(sim.next_event(&seg, b.phase + phase_tol(b.phase))),
+                    c => Some(first_contact(sim, &seg, b.phase + tol, early, c.as_ref())),
                 };
-                let tol = phase_tol(b.phase);
                 let outcome = match event {
                     None => Outcome::Arrives,
-                    Some(Ok(Some((e, _)))) if e.phase < b.phase - tol || e.boundary != mi.to => {
-                        Outcome::Early(e)
-                    }
+                    Some(Ok(Some((e, _)))) if early(&e) => Outcome::Early(e),
                     Some(Ok(Some(_))) => Outcome::Arrives,
                     Some(Ok(None)) => Outcome::Missing,
                     Some(Err(e)) => Outcome::Failed(e),
