@@ -216,8 +216,8 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
             if self.best.is_none_or(|(m, _)| margin < m) {
                 self.best = Some((margin, k));
             }
-            // NaN stays (it is no proof of anything).
-            if !(margin >= self.sides[side]) {
+            // NaN stays (it proves nothing: see `FlowCheck::keeps_off`).
+            if margin < self.sides[side] || margin.is_nan() {
                 self.sides[side] = margin;
             }
         }
