@@ -7,7 +7,8 @@
 //! * a sweep along W at each `--at` line locates transitions (every
 //!   non-smooth branch end, every eigenvalue bifurcation, every grazing of
 //!   the no-motion regime): each matches a curve crossing of the same kind,
-//!   boundary and motion to 1e-8 in W; each crossing matches a sweep
+//!   boundary and motion to 1e-10 in W (both locate the zero of one smooth
+//!   margin: 5e-13 apart at most, as measured); each crossing matches a sweep
 //!   transition, or the motion it belongs to is proved to exist there by
 //!   Newton (the sweep did not find that branch: the test says which).
 //!
@@ -264,7 +265,7 @@ fn sweeps_along_w_meet_the_curves_where_they_cross() {
                 c.kind.name() == t.kind
                     && c.boundary == t.boundary
                     && c.structure == t.structure
-                    && (w - t.w).abs() <= 1e-8
+                    && (w - t.w).abs() <= 1e-10
             })
         };
         for t in &found {
@@ -273,7 +274,7 @@ fn sweeps_along_w_meet_the_curves_where_they_cross() {
             // the motion past it, which the sweep locates too (the same
             // transition from the other side, where it may bear the other
             // name: a stick onset is a passable onset seen from the motion
-            // that passes) to 1e-8 on the curve.
+            // that passes) to 1e-10 on the curve.
             let other_side = || {
                 found.iter().any(|u| {
                     Some(&u.structure) == t.to.as_ref()
@@ -301,7 +302,7 @@ fn sweeps_along_w_meet_the_curves_where_they_cross() {
                 c.kind.name() == t.kind
                     && c.boundary == t.boundary
                     && c.structure == t.structure
-                    && (w - t.w).abs() <= 1e-8
+                    && (w - t.w).abs() <= 1e-10
             });
             if hit {
                 continue;
