@@ -40,13 +40,17 @@ fn run(from: f64, to: f64, count: usize) -> Sweep {
     sweep::<Paper>(base(), "W", from, to, count, SweepOptions::default()).expect("sweep")
 }
 
-/// The grazing of Σ2 that ends `from`, located by the sweep.
+/// The grazing of Σ2 near W = 7.9867 that ends `from`, located by the
+/// sweep (`P_{3_31 1_11 3_13 4_33}` grazes Σ2 near W = 3.73 too).
 fn grazing(s: &Sweep, from: &str) -> f64 {
     let t: Vec<_> = s
         .transitions
         .iter()
         .filter(|t| {
-            t.from == from && t.kind.name() == "grazing" && t.boundary.as_deref() == Some("Sigma2")
+            t.from == from
+                && t.kind.name() == "grazing"
+                && t.boundary.as_deref() == Some("Sigma2")
+                && (t.value - CURVE).abs() < 1e-4
         })
         .collect();
     assert_eq!(t.len(), 1, "{from}: {:?}", s.transitions);
@@ -144,6 +148,42 @@ fn the_margin_is_smooth_through_the_graze_tolerance() {
         assert!(
             m > 0.0 && (m - linear).abs() <= 1e-13,
             "W = CURVE + {dw:e}: margin {m:e}, expected {linear:e}"
+        );
+    }
+}
+
+/// The grid of `tests/curves_driver.rs` (W = 0.2 : 8 in 100 values), which
+/// located the grazing at 7.986719686508 before the fix, and ended the
+/// branch of `P_{3_31 0_11 1_11 3_13 4_33}` at a grazing of Σ1 that no
+/// curve has (W = 3.3279422): its end is where `1_11` shrinks to nothing,
+/// and the locating trials there converged onto the solutions in which
+/// `1_11` takes no time (every margin of which is violated). It ends at the
+/// stick onset where the motion without `1_11` has its passable onset.
+#[test]
+fn the_curves_driver_grid_locates_both_ends_on_the_curves() {
+    let s = run(0.2, 8.0, 100);
+    let w = grazing(&s, GRAZING);
+    assert!((w - CURVE).abs() <= 1e-10, "{GRAZING} grazes Σ2 at {w}");
+    let loop_ = "P_{3_31 0_11 1_11 3_13 4_33}";
+    let onset = s
+        .transitions
+        .iter()
+        .find(|t| t.from == "P_{3_31 0_11 3_13 4_33}" && t.to == loop_ && t.value < 3.4)
+        .expect("the passable onset near W = 3.328")
+        .value;
+    let ends: Vec<_> = s
+        .transitions
+        .iter()
+        .filter(|t| t.from == loop_ && (t.value - onset).abs() < 1e-3)
+        .collect();
+    assert!(!ends.is_empty(), "{:?}", s.transitions);
+    for t in ends {
+        eprintln!("{t:?} (passable onset at {onset})");
+        assert!(
+            t.kind.name() == "stick_onset"
+                && t.to == "P_{3_31 0_11 3_13 4_33}"
+                && (t.value - onset).abs() <= 1e-7,
+            "{t:?}, the passable onset at {onset}"
         );
     }
 }
