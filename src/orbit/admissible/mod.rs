@@ -8,6 +8,12 @@
 //! ([`crate::orbit::extrema`]): a segment whose acceleration provably keeps
 //! its sign costs one evaluation, and the event search of the simulation is
 //! run only where a margin is too small for the closed form to decide alone.
+//! There the event search decides which boundary the flow meets first, the
+//! closed form how far from it the flow stays: a graze it reports (a touch
+//! within its graze tolerance) of an extremum the closed form keeps off the
+//! boundary is no contact (`first_contact`), so that each margin is the
+//! closed form's on both sides of its zero and a sweep locates the zero of
+//! the same smooth function as a two-parameter curve.
 //! The text of a condition is written only when it is violated.
 //!
 //! An extremum's value is taken where the former sampled search puts it
