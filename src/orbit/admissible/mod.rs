@@ -11,9 +11,9 @@
 //! There the event search decides which boundary the flow meets first, the
 //! closed form how far from it the flow stays: a graze it reports (a touch
 //! within its graze tolerance) of an extremum the closed form keeps off the
-//! boundary is no contact (`first_contact`), so that each margin is the
-//! closed form's on both sides of its zero and a sweep locates the zero of
-//! the same smooth function as a two-parameter curve.
+//! boundary is no contact (`contact::first_contact`), so that each margin
+//! is the closed form's on both sides of its zero and a sweep locates the
+//! zero of the same smooth function as a two-parameter curve.
 //! The text of a condition is written only when it is violated.
 //!
 //! An extremum's value is taken where the former sampled search puts it
@@ -22,16 +22,18 @@
 //! is the closed form's value at its zero of the acceleration.
 
 use crate::dynamics::simulate::{
-    Event, EventKind, Location, Segment, SimError, Simulator, MAX_STEPS_PER_PERIOD,
+    Event, EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD,
 };
 use crate::model::{MappingKind, Model, Side};
 use crate::orbit::extrema::{SegmentFlow, Settle};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
+mod contact;
 mod sink;
 mod stick;
 
+use contact::first_contact;
 pub(crate) use stick::early_end_extremum;
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
@@ -308,50 +310,12 @@ struct FlowCheck {
 impl FlowCheck {
     /// Whether the closed form keeps the flow strictly inside, off boundary
     /// `k`, by a margin within the band where the event search is asked
-    /// (see [`first_contact`]).
+    /// (see `contact::first_contact`).
     fn keeps_off(&self, k: usize) -> bool {
         self.sides
             .iter()
             .any(|&(b, m)| b == Some(k) && m > 0.0 && m <= self.near)
     }
-}
-
-/// The first boundary contact of the flow of `seg` before `limit` that is
-/// not a graze the closed form puts strictly inside (`check`): such a graze
-/// is a touch within the event search's graze tolerance (`|v − V_k|` at the
-/// extremum below `graze_tol`) of an extremum that the closed form, exact
-/// to rounding, keeps off the boundary by a positive margin. The margin is
-/// then the closed form's, positive, like on either side of that tolerance
-/// band: were the graze taken as an early contact (margin 0), the margin a
-/// sweep locates its transition on would be 0 on a band of width
-/// `graze_tol` above its zero, and the located root the edge of that band
-/// where the event search's classification flips (grid-dependent, about
-/// `graze_tol / |dm/dλ|` off the zero of the smooth margin, which is the
-/// two-parameter curve's). The event search still decides which boundary is
-/// crossed first: it goes on past such a graze.
-fn first_contact<M: Model>(
-    sim: &Simulator<M>,
-    seg: &Segment,
-    limit: f64,
-    early: impl Fn(&Event) -> bool,
-    check: Option<&FlowCheck>,
-) -> Result<Option<(Event, Segment)>, SimError> {
-    let mut seg = *seg;
-    // One graze per extremum (the search resumes past each): a segment has
-    // few; the bound only keeps a pathological one finite.
-    for _ in 0..16 {
-        match sim.next_event(&seg, limit)? {
-            Some((e, next))
-                if e.kind == EventKind::Graze
-                    && early(&e)
-                    && check.is_some_and(|c| c.keeps_off(e.boundary)) =>
-            {
-                seg = next;
-            }
-            other => return Ok(other),
-        }
-    }
-    sim.next_event(&seg, limit)
 }
 
 /// The interior margin of the flow of `seg` to phase `b` on boundary `to`
@@ -668,7 +632,9 @@ fn walk<M: Model>(
                 let early = |e: &Event| e.phase < b.phase - tol || e.boundary != mi.to;
                 let event = match &check {
                     Some(c) if c.arrives || smooth => None,
-                    c => Some(first_contact(sim, &seg, b.phase + tol, early, c.as_ref())),
+                    c => Some(first_contact(sim, &seg, b.phase + tol, early, |k| {
+                        c.as_ref().is_some_and(|c| c.keeps_off(k))
+                    })),
                 };
                 let outcome = match event {
                     None => Outcome::Arrives,
