@@ -216,7 +216,20 @@ impl<M: Model> Continuer<'_, M> {
     ) -> Result<(State, usize), String> {
         let mut x = from.state.clone();
         Bordered::<M>::advance(&from.state, s, &from.tangent, &mut x);
-        let anchor = x.clone();
+        self.corrected_from(from, s, x, max_iterations)
+    }
+
+    /// [`Self::corrected`], Newton started from `guess` (on the same
+    /// hyperplane, normal to `from`'s tangent at arclength `s`).
+    fn corrected_from(
+        &mut self,
+        from: &Sample,
+        s: f64,
+        mut x: State,
+        max_iterations: usize,
+    ) -> Result<(State, usize), String> {
+        let mut anchor = x.clone();
+        Bordered::<M>::advance(&from.state, s, &from.tangent, &mut anchor);
         let it = match self.sys.correct(
             &mut x,
             &from.tangent,
@@ -231,25 +244,58 @@ impl<M: Model> Continuer<'_, M> {
     }
 
     /// Regula falsi (Illinois) in arclength on `g` over `[0, s_bad]` from
-    /// `from` (`g > 0` there, `g(s_bad) <= 0` or undefined) until the
-    /// bracket is below `s_tol` ([`super::locate::regula_falsi`]); returns
-    /// the last good sample (or `from`) and the last bad one.
+    /// `from` (`g > 0` there, `g(s_bad) <= 0` or undefined; `bad`: the
+    /// corrected point there) until the bracket is below `s_tol`
+    /// ([`super::locate::regula_falsi`]); returns the last good sample (or
+    /// `from`) and the last bad one.
+    ///
+    /// Each trial is corrected on the hyperplane at its arclength from the
+    /// chord between the bracket's ends (from the last good one along the
+    /// step's tangent while the bad end has no point): the predictor from
+    /// `from` along its tangent is off the branch by the branch's curvature
+    /// times the whole step squared, and where another solution family
+    /// crosses the branch (a mapping shrinking to nothing: the solutions in
+    /// which it takes no time at all, near the branch's end) Newton from
+    /// there may converge onto that family, whose margins are not the
+    /// branch's, and the bracket closes on a point where no transition is.
     fn locate(
         &mut self,
         from: &Sample,
-        s_bad: f64,
+        (s_bad, bad): (f64, Option<&State>),
         g_bad: f64,
         s_tol: f64,
         g: impl Fn(&Sample) -> f64,
     ) -> (Sample, Option<Sample>) {
         let iterations = 4 * self.opts.newton.max_iterations;
+        let g = &g;
+        let mut lo = (0.0, from.state.clone());
+        let mut hi = bad.map(|x| (s_bad, x.clone()));
         // No tangent at the trials: near a branch point it is ill-posed,
         // and the located quantities do not need it (the trial keeps
         // the step's tangent; a fold is classified by the step's ends).
         let trial = |s: f64| {
-            self.corrected(from, s, iterations)
-                .and_then(|(x, _)| self.examine(x, from.tangent.clone()))
-                .ok()
+            let mut guess = lo.1.clone();
+            match &hi {
+                Some((sh, xh)) if *sh > lo.0 => {
+                    let theta = (s - lo.0) / (sh - lo.0);
+                    for ((q, a), b) in guess.points.iter_mut().zip(&lo.1.points).zip(&xh.points) {
+                        q.x = a.x + theta * (b.x - a.x);
+                        q.phase = a.phase + theta * (b.phase - a.phase);
+                    }
+                    guess.value = lo.1.value + theta * (xh.value - lo.1.value);
+                }
+                _ => Bordered::<M>::advance(&lo.1, s - lo.0, &from.tangent, &mut guess),
+            }
+            let smp = self
+                .corrected_from(from, s, guess, iterations)
+                .and_then(|(x, _)| self.examine(x, from.tangent.clone()));
+            // The bracket's ends as regula falsi moves them.
+            match &smp {
+                Ok(x) if g(x) > 0.0 => lo = (s, x.state.clone()),
+                Ok(x) => hi = Some((s, x.state.clone())),
+                Err(_) => hi = None,
+            }
+            smp.ok()
         };
         let (good, bad) = regula_falsi(g(from), s_bad, g_bad, s_tol, trial, g);
         (good.unwrap_or_else(|| from.clone()), bad)
@@ -263,7 +309,7 @@ impl<M: Model> Continuer<'_, M> {
             let g = move |s: &Sample| which.sign_from(&a.tests) * s.tests.value(which);
             let g_b = g(b);
             let s_tol = (self.opts.bifurcation_tolerance / self.sys.span).min(1e-11);
-            let (good, bad) = self.locate(a, s_b, g_b, s_tol, g);
+            let (good, bad) = self.locate(a, (s_b, Some(&b.state)), g_b, s_tol, g);
             // The end of the bracket with the smaller test function.
             let at = match bad {
                 Some(bd) if bd.tests.value(which).abs() < good.tests.value(which).abs() => bd,
@@ -434,7 +480,13 @@ impl<M: Model> Continuer<'_, M> {
             if cand.margin.is_nan() || cand.margin <= 0.0 {
                 let s_tol = opts.transition_tolerance / self.sys.span;
                 let g_bad = cand.margin;
-                let (mut good, _) = self.locate(&prev, s_c, g_bad, s_tol, |s: &Sample| s.margin);
+                let (mut good, _) = self.locate(
+                    &prev,
+                    (s_c, Some(&cand.state)),
+                    g_bad,
+                    s_tol,
+                    |s: &Sample| s.margin,
+                );
                 // The located end carries the step's tangent (the trials
                 // have none): its own, so that a fold on the truncated step
                 // is told from a branch point by the tangent's turn.

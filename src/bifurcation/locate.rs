@@ -55,9 +55,12 @@ pub(crate) fn regula_falsi<S>(
                     bad = Some(smp);
                     side = if side == -1 { -2 } else { -1 };
                 }
-                if v == 0.0 {
-                    break;
-                }
+                // A trial on the zero itself (to rounding) ends the bracket
+                // like any bad one, but not the search: the good end is
+                // still wherever the last good trial was (a whole step away
+                // if the first trial hits the zero), and what the callers
+                // report is that end. Bisection closes in on it (the secant
+                // through a zero lands on the bad end itself).
             }
             None => {
                 hi = s;
@@ -83,6 +86,19 @@ mod tests {
         assert!(f(good) > 0.0 && f(bad) <= 0.0);
         assert!((good - 0.3f64.sqrt()).abs() < 1e-11, "{good}");
         assert!((bad - good).abs() <= 1e-11);
+    }
+
+    /// A trial that hits the zero exactly is a bad end, and the good end
+    /// still closes in on it to the tolerance (it was left a whole step
+    /// away when the search stopped there).
+    #[test]
+    fn a_trial_on_the_zero_still_brackets_it() {
+        // Linear: the first secant lands on the root, where `g` is exactly 0.
+        let f = |s: f64| 0.5 - s;
+        let (good, bad) = regula_falsi(f(0.0), 1.0, f(1.0), 1e-12, Some, |&s| f(s));
+        let (good, bad) = (good.unwrap(), bad.unwrap());
+        assert_eq!(f(bad), 0.0);
+        assert!(f(good) > 0.0 && 0.5 - good <= 1e-12, "{good}");
     }
 
     /// Where the quantity is undefined past the root (NaN, or a failed

@@ -8,21 +8,31 @@
 //! ([`crate::orbit::extrema`]): a segment whose acceleration provably keeps
 //! its sign costs one evaluation, and the event search of the simulation is
 //! run only where a margin is too small for the closed form to decide alone.
+//! There the event search decides which boundary the flow meets first, the
+//! closed form how far from it the flow stays: a graze it reports (a touch
+//! within its graze tolerance) of an extremum the closed form keeps off the
+//! boundary is no contact (`contact::first_contact`), so that each margin
+//! is the closed form's on both sides of its zero and a sweep locates the
+//! zero of the same smooth function as a two-parameter curve.
 //! The text of a condition is written only when it is violated.
 //!
 //! Every extremum's value is the closed form's at its zero of the
 //! acceleration: the margins are smooth functions of the points, equal to
 //! rounding to an independent dense search (`tests/margins.rs`).
 
-use crate::dynamics::simulate::{EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD};
+use crate::dynamics::simulate::{
+    Event, EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD,
+};
 use crate::model::{MappingKind, Model, Side};
 use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
+mod contact;
 mod sink;
 mod stick;
 
+use contact::first_contact;
 pub(crate) use stick::early_end_extremum;
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
@@ -48,6 +58,10 @@ struct InteriorMargin<'a, M: Model> {
     j: usize,
     touched: [usize; 2],
     best: Option<(f64, usize)>,
+    /// The smallest margin on the domain's lower and upper boundary alone
+    /// (infinite where none counts): which boundary the closed form puts
+    /// the flow near, for [`FlowCheck::keeps_off`].
+    sides: [f64; 2],
 }
 
 impl<'a, M: Model> InteriorMargin<'a, M> {
@@ -57,22 +71,28 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
             j,
             touched,
             best: None,
+            sides: [f64::INFINITY; 2],
         }
     }
 
     fn consider(&mut self, v: f64, extremum: bool) {
         let dom = M::INFO.domains[self.j];
-        for k in [dom.lower, dom.upper].into_iter().flatten() {
+        for (side, k) in [dom.lower, dom.upper].into_iter().enumerate() {
+            let Some(k) = k else { continue };
             if !extremum && self.touched.contains(&k) {
                 continue;
             }
-            let margin = if Some(k) == dom.lower {
+            let margin = if side == 0 {
                 v - self.sim.velocity(k)
             } else {
                 self.sim.velocity(k) - v
             };
             if self.best.is_none_or(|(m, _)| margin < m) {
                 self.best = Some((margin, k));
+            }
+            // NaN stays (it proves nothing: see `FlowCheck::keeps_off`).
+            if margin < self.sides[side] || margin.is_nan() {
+                self.sides[side] = margin;
             }
         }
     }
@@ -83,12 +103,13 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
         self.consider(v, true);
     }
 
-    /// The margin, given the velocities at the segment's start and end.
-    fn finish(mut self, start_v: f64, end_v: f64) -> Option<(f64, usize)> {
+    /// The margin, given the velocities at the segment's start and end,
+    /// and the smallest margins on the lower and upper boundary alone.
+    fn finish(mut self, start_v: f64, end_v: f64) -> (Option<(f64, usize)>, [f64; 2]) {
         // The ends, for the boundaries not touched.
         self.consider(start_v, false);
         self.consider(end_v, false);
-        self.best
+        (self.best, self.sides)
     }
 }
 
@@ -112,6 +133,23 @@ struct FlowCheck {
     /// the mapping's target within the phase tolerance (where the event
     /// search would find it): every margin is clear of zero.
     arrives: bool,
+    /// The domain's lower and upper boundary (indices), each with the
+    /// smallest margin of the closed form on it alone (infinite: none
+    /// counts), and the band within which the event search decides
+    /// (`near` of [`check_flow`]).
+    sides: [(Option<usize>, f64); 2],
+    near: f64,
+}
+
+impl FlowCheck {
+    /// Whether the closed form keeps the flow strictly inside, off boundary
+    /// `k`, by a margin within the band where the event search is asked
+    /// (see `contact::first_contact`).
+    fn keeps_off(&self, k: usize) -> bool {
+        self.sides
+            .iter()
+            .any(|&(b, m)| b == Some(k) && m > 0.0 && m <= self.near)
+    }
 }
 
 /// The interior margin of the flow of `seg` to phase `b` on boundary `to`
@@ -152,7 +190,7 @@ fn check_flow<M: Model>(
         clear &= lo.is_none_or(|l| s.v - l > near) && hi.is_none_or(|h| h - s.v > near);
     });
     let e = flow.at(b);
-    let interior = margin.finish(seg.v, e.v);
+    let (interior, sides) = margin.finish(seg.v, e.v);
     let vb = sim.velocity(to);
     let out = if dom.upper == Some(to) { 1.0 } else { -1.0 };
     let ascale = osc.amplitude.abs()
@@ -170,7 +208,12 @@ fn check_flow<M: Model>(
         && out * e.a > 1e-9 * ascale
         && (e.v - vb).abs() * w <= 1e-3 * tol * e.a.abs()
         && [e.x, e.v, e.a].iter().all(|v| v.is_finite());
-    FlowCheck { interior, arrives }
+    FlowCheck {
+        interior,
+        arrives,
+        sides: [(dom.lower, sides[0]), (dom.upper, sides[1])],
+        near,
+    }
 }
 
 /// Every condition of SPEC §6 for `points` of `structure`, with its margin;
@@ -408,16 +451,17 @@ fn walk<M: Model>(
                 // The arrival on β is the first boundary contact: certain from
                 // the closed form when every margin is clear of zero, else
                 // the event search decides.
+                let tol = phase_tol(b.phase);
+                let early = |e: &Event| e.phase < b.phase - tol || e.boundary != mi.to;
                 let event = match &check {
                     Some(c) if c.arrives || smooth => None,
-                    _ => Some(sim.next_event(&seg, b.phase + phase_tol(b.phase))),
+                    c => Some(first_contact(sim, &seg, b.phase + tol, early, |k| {
+                        c.as_ref().is_some_and(|c| c.keeps_off(k))
+                    })),
                 };
-                let tol = phase_tol(b.phase);
                 let outcome = match event {
                     None => Outcome::Arrives,
-                    Some(Ok(Some((e, _)))) if e.phase < b.phase - tol || e.boundary != mi.to => {
-                        Outcome::Early(e)
-                    }
+                    Some(Ok(Some((e, _)))) if early(&e) => Outcome::Early(e),
                     Some(Ok(Some(_))) => Outcome::Arrives,
                     Some(Ok(None)) => Outcome::Missing,
                     Some(Err(e)) => Outcome::Failed(e),
