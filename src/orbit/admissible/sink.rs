@@ -118,12 +118,13 @@ impl Sink for Violated {
     }
 }
 
-/// The smallest margin, and the smallest force criterion (pass or stick
-/// onset) to name it by when both vanish together (see [`super::worst_margin`]).
+/// The smallest margin, and the smallest force criteria (pass, stick
+/// onset) to name it by when it vanishes with one (see [`super::worst_margin`]).
 #[derive(Default)]
 pub(super) struct Worst {
     smallest: Option<Margin>,
-    force: Option<Margin>,
+    pass: Option<Margin>,
+    stick_onset: Option<Margin>,
 }
 
 /// How close (relative, at least absolute 1e-6) a force criterion's margin
@@ -146,14 +147,23 @@ impl Worst {
         // sign (the input force of that side vanishes with the
         // acceleration): it is named by the force criterion (stick onset,
         // passable onset), as SPEC §3 names it.
-        if let (
-            ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure,
-            Some(f),
-        ) = (w.kind, self.force)
-        {
-            if f.boundary == w.boundary
-                && (f.margin - w.margin).abs() <= SAME_EVENT * w.margin.abs().max(1.0)
-            {
+        //
+        // Where a flow between two contacts with the boundary shrinks to
+        // nothing, the pass into it and the stick onset after it vanish
+        // together: the pass names it (the passage that fails turns into a
+        // stick, which removes the excursion: a stick onset), so that the
+        // name does not depend on which of the two rounding makes smaller.
+        if matches!(
+            w.kind,
+            ViolationKind::Arrival | ViolationKind::Interior | ViolationKind::Departure
+        ) {
+            let with = |f: &Option<Margin>| {
+                f.filter(|f| {
+                    f.boundary == w.boundary
+                        && (f.margin - w.margin).abs() <= SAME_EVENT * w.margin.abs().max(1.0)
+                })
+            };
+            if let Some(f) = with(&self.pass).or(with(&self.stick_onset)) {
                 w.kind = f.kind;
                 w.segment = f.segment;
             }
@@ -177,8 +187,10 @@ impl Sink for Worst {
             segment,
             boundary,
         };
-        if matches!(kind, ViolationKind::Pass | ViolationKind::StickOnset) {
-            Self::keep(&mut self.force, m);
+        match kind {
+            ViolationKind::Pass => Self::keep(&mut self.pass, m),
+            ViolationKind::StickOnset => Self::keep(&mut self.stick_onset, m),
+            _ => {}
         }
         Self::keep(&mut self.smallest, m);
     }
