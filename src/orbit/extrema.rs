@@ -18,6 +18,14 @@
 //! by a sign change and refined by safeguarded Newton). Otherwise the piece
 //! is halved. The bounds hold in every damping regime (they use the ODE, not
 //! the form of its solution).
+//!
+//! On a monotone piece `|a'| ≥ μ = |a'_m| − r max|a''| > 0`, so the signs of
+//! `a` at its ends follow from the same Taylor bound where it is decisive
+//! (no evaluation), and an iterate `t` with acceleration `a` is within
+//! `|a| / μ` (in time) of the zero and its velocity within `a² / μ` of the
+//! extremum's: a caller that needs only to know that the extremum is clear
+//! of a boundary can stop the refinement as soon as that is proven
+//! ([`Zero`], the `enough` of [`SegmentFlow::acceleration_zeros`]).
 
 use crate::dynamics::response::Response;
 use crate::model::{Coefficients, Oscillator};
@@ -37,6 +45,22 @@ pub(crate) struct SegmentFlow {
     omega: f64,
     rate: f64,
     forcing: f64,
+}
+
+/// A zero of the acceleration as the search hands it over: its phase and
+/// the state there, with bounds on how far both are from the exact zero's
+/// (zero when refined until Newton's correction is below the phase's
+/// rounding).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Zero {
+    /// The phase.
+    pub phase: f64,
+    /// The state there.
+    pub state: FlowState,
+    /// `|phase − exact zero's phase|` is at most this.
+    pub phase_err: f64,
+    /// `|state.v − v at the exact zero|` is at most this.
+    pub v_err: f64,
 }
 
 /// Deepest halving of a piece before a sign test decides (the piece is then
@@ -74,14 +98,16 @@ impl SegmentFlow {
     }
 
     /// Every zero of the acceleration on `[lo, hi]` (phases), in increasing
-    /// order, each passed to `on_zero` with its phase (refined until
-    /// Newton's correction is below the rounding of the phase) and the state
-    /// there. Returns the number of evaluations made.
+    /// order, each passed to `on_zero` ([`Zero`]): refined until Newton's
+    /// correction is below the rounding of the phase, or until `enough`
+    /// accepts it with its error bounds (`|_| false`: always to rounding).
+    /// Returns the number of evaluations made.
     pub fn acceleration_zeros(
         &self,
         lo: f64,
         hi: f64,
-        mut on_zero: impl FnMut(f64, &FlowState),
+        enough: impl Fn(&Zero) -> bool,
+        mut on_zero: impl FnMut(&Zero),
     ) -> usize {
         let mut evals = 0usize;
         // Pieces still to look at, the leftmost on top; (lo, hi, depth).
@@ -107,6 +133,28 @@ impl SegmentFlow {
                 continue;
             }
             let monotone = m.da.abs() > snap * r;
+            if monotone && j.is_finite() && snap.is_finite() {
+                // `|a'| ≥ mu` on the piece; the ends' signs from Taylor
+                // where it decides them, else evaluated.
+                let mu = m.da.abs() - snap * r;
+                let slack = 0.5 * snap * r * r;
+                let sign = |end: f64, at: f64, evals: &mut usize| {
+                    let taylor = m.a + m.da * end;
+                    if taylor.abs() > slack {
+                        taylor > 0.0
+                    } else {
+                        *evals += 1;
+                        self.at(at).a > 0.0
+                    }
+                };
+                let (a0, a1) = (sign(-r, p0, &mut evals), sign(r, p1, &mut evals));
+                if a0 != a1 {
+                    let (z, n) = self.refine(p0, p1, a0, m, mid, mu, &enough);
+                    evals += n;
+                    on_zero(&z);
+                }
+                continue;
+            }
             if monotone || depth >= MAX_DEPTH || !(j.is_finite() && snap.is_finite()) {
                 // The right end of the piece looked at last is often this one's left end.
                 let s0 = match cached {
@@ -120,9 +168,9 @@ impl SegmentFlow {
                 evals += 1;
                 cached = Some((p1, s1));
                 if (s0.a > 0.0) != (s1.a > 0.0) {
-                    let (phi, st, n) = self.refine(p0, p1, s0.a, m, mid);
+                    let (z, n) = self.refine(p0, p1, s0.a > 0.0, m, mid, 0.0, &|_| false);
                     evals += n;
-                    on_zero(phi, &st);
+                    on_zero(&z);
                 }
                 continue;
             }
@@ -134,23 +182,41 @@ impl SegmentFlow {
         evals
     }
 
-    /// The zero of `a` in `[lo, hi]` (where it changes sign, `a(lo) = a_lo`)
-    /// by Newton safeguarded with bisection, from `start` (state `s`).
+    /// The zero of `a` in `[lo, hi]` (where it changes sign, `a(lo) > 0`
+    /// is `lo_positive`) by Newton safeguarded with bisection, from `start`
+    /// (state `s`). `mu > 0`: a lower bound of `|a'|` on the bracket, which
+    /// bounds each iterate's errors for `enough` (0: no bound, refined to
+    /// rounding).
+    #[allow(clippy::too_many_arguments)]
     fn refine(
         &self,
         mut lo: f64,
         mut hi: f64,
-        a_lo: f64,
+        lo_positive: bool,
         mut s: FlowState,
         start: f64,
-    ) -> (f64, FlowState, usize) {
+        mu: f64,
+        enough: &impl Fn(&Zero) -> bool,
+    ) -> (Zero, usize) {
         let mut t = start;
         let mut evals = 0;
         for _ in 0..60 {
-            if (s.a > 0.0) == (a_lo > 0.0) {
+            if (s.a > 0.0) == lo_positive {
                 lo = t;
             } else {
                 hi = t;
+            }
+            if mu > 0.0 {
+                let dt = s.a.abs() / mu;
+                let z = Zero {
+                    phase: t,
+                    state: s,
+                    phase_err: dt * self.w,
+                    v_err: s.a.abs() * dt,
+                };
+                if enough(&z) {
+                    return (z, evals);
+                }
             }
             let newton = t - s.a * self.w / s.da;
             let resolution = 4.0 * f64::EPSILON * t.abs().max(1.0);
@@ -172,6 +238,68 @@ impl SegmentFlow {
                 break;
             }
         }
-        (t, s, evals)
+        let z = Zero {
+            phase: t,
+            state: s,
+            phase_err: 0.0,
+            v_err: 0.0,
+        };
+        (z, evals)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::simulate::{SimOptions, Simulator};
+    use crate::models::paper::{Paper, Params};
+
+    /// A flow of the paper model at W = 5, Q0 = 70 in domain `j` over two
+    /// forcing periods (several extrema of `v`).
+    fn flow(j: usize) -> SegmentFlow {
+        let p = Params {
+            W: 5.0,
+            Q0: 70.0,
+            ..Params::default()
+        };
+        let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("params");
+        SegmentFlow::new(sim.oscillator(), sim.coefficients(j), 0.5, 2.0, 0.3).expect("a flow")
+    }
+
+    /// A zero accepted early by `enough` is within its stated bounds of the
+    /// zero refined to rounding, and costs fewer evaluations.
+    #[test]
+    fn an_early_zero_is_within_its_bounds_of_the_refined_one() {
+        for j in 0..4 {
+            let f = flow(j);
+            let (lo, hi) = (0.3, 0.3 + 4.0 * std::f64::consts::PI);
+            let mut full = Vec::new();
+            let n_full = f.acceleration_zeros(lo, hi, |_| false, |z| full.push(*z));
+            let mut early = Vec::new();
+            let n_early = f.acceleration_zeros(lo, hi, |z| z.v_err < 1e-2, |z| early.push(*z));
+            assert!(full.len() >= 2, "domain {j}: {} zeros", full.len());
+            assert_eq!(full.len(), early.len(), "domain {j}");
+            assert!(full.iter().all(|z| z.phase_err == 0.0 && z.v_err == 0.0));
+            assert!(
+                early.iter().any(|z| z.phase_err > 0.0),
+                "domain {j}: no zero accepted early"
+            );
+            assert!(
+                n_early < n_full,
+                "domain {j}: {n_early} vs {n_full} evaluations"
+            );
+            for (e, z) in early.iter().zip(&full) {
+                // The bounds hold (and the refined zero is a zero).
+                assert!(z.state.a.abs() <= 1e-9 * (1.0 + z.state.da.abs()), "{z:?}");
+                assert!(
+                    (e.phase - z.phase).abs() <= e.phase_err + 1e-12,
+                    "domain {j}: {e:?} vs {z:?}"
+                );
+                assert!(
+                    (e.state.v - z.state.v).abs() <= e.v_err + 1e-12,
+                    "domain {j}: {e:?} vs {z:?}"
+                );
+            }
+        }
     }
 }

@@ -24,7 +24,7 @@ use crate::dynamics::simulate::{
     Event, EventKind, Location, Segment, Simulator, MAX_STEPS_PER_PERIOD,
 };
 use crate::model::{MappingKind, Model, Side};
-use crate::orbit::extrema::SegmentFlow;
+use crate::orbit::extrema::{SegmentFlow, Zero};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
@@ -55,6 +55,8 @@ fn phase_tol(phase: f64) -> f64 {
 /// [`InteriorMargin::extremum`] with the closed form's velocity there.
 struct InteriorMargin<'a, M: Model> {
     sim: &'a Simulator<M>,
+    /// Only the signs of the margins count ([`Sink::signs_only`]).
+    signs_only: bool,
     j: usize,
     touched: [usize; 2],
     best: Option<(f64, usize)>,
@@ -65,9 +67,10 @@ struct InteriorMargin<'a, M: Model> {
 }
 
 impl<'a, M: Model> InteriorMargin<'a, M> {
-    fn new(sim: &'a Simulator<M>, touched: [usize; 2], j: usize) -> Self {
+    fn new(sim: &'a Simulator<M>, touched: [usize; 2], j: usize, signs_only: bool) -> Self {
         Self {
             sim,
+            signs_only,
             j,
             touched,
             best: None,
@@ -181,13 +184,21 @@ fn check_flow<M: Model>(
     // Closer than this to a boundary, the event search decides.
     let near = (100.0 * sim.options().graze_tol).max(1e-9 * vscale);
     let mut clear = true;
-    flow.acceleration_zeros(seg.phase, b + tol, |t, s| {
-        if t > b {
+    let off = |v: f64, err: f64| {
+        lo.is_none_or(|l| v - err - l > near) && hi.is_none_or(|h| h - v - err > near)
+    };
+    // Where only the signs of the margins count, an extremum proven clear
+    // of both boundaries before the arrival needs no further refinement
+    // (its margin, inexact, is positive and not the one reported).
+    let signs_only = margin.signs_only;
+    let enough = |z: &Zero| signs_only && z.phase + z.phase_err < b && off(z.state.v, z.v_err);
+    flow.acceleration_zeros(seg.phase, b + tol, enough, |z| {
+        if z.phase > b {
             clear = false;
             return;
         }
-        margin.extremum(s.v);
-        clear &= lo.is_none_or(|l| s.v - l > near) && hi.is_none_or(|h| h - s.v > near);
+        margin.extremum(z.state.v);
+        clear &= off(z.state.v, z.v_err);
     });
     let e = flow.at(b);
     let (interior, sides) = margin.finish(seg.v, e.v);
@@ -302,6 +313,7 @@ fn walk<M: Model>(
     let label = |k: usize| info.boundaries[k].label;
     // Each margin as a smooth function of the points: no event search.
     let smooth = out.smooth();
+    let signs_only = out.signs_only();
     for k in 0..m {
         let mi = info.mappings[structure.steps()[k]];
         let next_mi = info.mappings[structure.steps()[(k + 1) % m]];
@@ -439,7 +451,7 @@ fn walk<M: Model>(
                     SegmentFlow::new(sim.oscillator(), sim.coefficients(j), a.x, va, a.phase).map(
                         |f| {
                             let ends = [mi.from, mi.to];
-                            let margin = InteriorMargin::new(sim, ends, j);
+                            let margin = InteriorMargin::new(sim, ends, j, signs_only);
                             check_flow(sim, &f, &seg, mi.to, b.phase, into * acc0, margin)
                         },
                     );

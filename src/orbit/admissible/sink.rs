@@ -78,6 +78,13 @@ pub(super) trait Sink {
     fn smooth(&self) -> bool {
         false
     }
+
+    /// Whether only the violated conditions are wanted, so that a margin
+    /// proven positive may be inexact (a velocity extremum proven clear of
+    /// the boundaries is not refined further): [`super::violations`].
+    fn signs_only(&self) -> bool {
+        false
+    }
 }
 
 impl Sink for Vec<Violation> {
@@ -104,6 +111,10 @@ impl Sink for Vec<Violation> {
 pub(super) struct Violated(pub(super) Vec<Violation>);
 
 impl Sink for Violated {
+    fn signs_only(&self) -> bool {
+        true
+    }
+
     fn add(
         &mut self,
         segment: usize,
