@@ -215,3 +215,36 @@ fn map_curves_needs_a_plot() {
     assert!(!out.exists(), "nothing computed");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--max-mappings M` traces the curves of the motions of at most M
+/// mappings: below the default it leaves out the longer motions' curves
+/// and keeps the others.
+#[test]
+fn max_mappings_limits_the_motions_traced() {
+    let structures = |v: &Value| -> Vec<String> {
+        v["curves"]
+            .as_array()
+            .expect("curves")
+            .iter()
+            .filter_map(|c| c["structure"].as_str().map(str::to_string))
+            .collect()
+    };
+    let mappings = |s: &str| s.split_whitespace().count();
+    let all = run(&SMALL);
+    assert!(all.status.success(), "{}", text(&all.stderr));
+    let all: Value = serde_json::from_slice(&all.stdout).expect("JSON");
+    let few = run(&with(&["--max-mappings", "4"])
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>());
+    assert!(few.status.success(), "{}", text(&few.stderr));
+    let few: Value = serde_json::from_slice(&few.stdout).expect("JSON");
+    let (all, few) = (structures(&all), structures(&few));
+    assert!(all.iter().any(|s| mappings(s) > 4), "{all:?}");
+    assert!(few.iter().all(|s| mappings(s) <= 4), "{few:?}");
+    let short = |v: &[String]| v.iter().filter(|s| mappings(s) <= 4).count();
+    assert!(
+        short(&few) > 0 && short(&few) >= short(&all),
+        "{few:?} against {all:?}"
+    );
+}

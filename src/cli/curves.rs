@@ -51,6 +51,11 @@ pub struct CurvesArgs {
     /// Extra seed lines spread evenly over the box, this many each way.
     #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().spread)]
     spread: usize,
+    /// Trace the transitions of motions of at most this many mappings (the
+    /// long cycles of period-adding cascades cost a continuation of that
+    /// many switching points each).
+    #[arg(long, value_name = "M", default_value_t = CurvesSettings::default().max_mappings)]
+    max_mappings: usize,
 }
 
 /// The curves as text or JSON, and the regime map.
@@ -119,6 +124,7 @@ impl WithModel for CurvesCmd {
         let settings = CurvesSettings {
             count: self.args.count,
             spread: self.args.spread,
+            max_mappings: self.args.max_mappings,
             ..CurvesSettings::default()
         };
         let found = curves_with::<M>(&base, &opts, &settings)?;
