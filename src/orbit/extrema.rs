@@ -25,7 +25,7 @@
 //! `|a| / μ` (in time) of the zero and its velocity within `a² / μ` of the
 //! extremum's: a caller that needs only to know that the extremum is clear
 //! of a boundary can stop the refinement as soon as that is proven
-//! ([`Zero`], the `enough` of [`SegmentFlow::acceleration_zeros`]).
+//! (`Zero`, the `enough` of `SegmentFlow::acceleration_zeros`).
 
 use crate::dynamics::response::Response;
 use crate::model::{Coefficients, Oscillator};
