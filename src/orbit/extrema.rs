@@ -155,7 +155,9 @@ impl SegmentFlow {
                 }
                 continue;
             }
-            if monotone || depth >= MAX_DEPTH || !(j.is_finite() && snap.is_finite()) {
+            // Not proven monotone with finite bounds: at the deepest halving
+            // or where the bounds overflow, the ends' signs decide.
+            if depth >= MAX_DEPTH || !(j.is_finite() && snap.is_finite()) {
                 // The right end of the piece looked at last is often this one's left end.
                 let s0 = match cached {
                     Some((phi, s)) if phi == p0 => s,
