@@ -28,7 +28,7 @@ pub mod study;
 pub use model::{
     Bound, BoundaryInfo, Coefficients, DomainInfo, Entry, FrictionOscillator, Identity,
     MappingEval, MappingInfo, MappingKind, Model, ModelInfo, ModelVisitor, Oscillator, ParamError,
-    ParamInfo, ParamSet, Regime, Side, SmoothInfo, SmoothModel, StickForces,
+    ParamInfo, ParamSet, Phase, Regime, Side, SmoothInfo, SmoothModel, StickForces,
 };
 
 /// Generate a model inline, or from a model file of your crate:

@@ -60,7 +60,7 @@ impl Response {
             sin: q,
             offset,
         } = co.forced_response(&osc);
-        let (s0, c0) = phi0.sin_cos();
+        let (s0, c0) = libm::sincos(phi0);
         let dev_x = x0 - (offset + (p * c0 + q * s0));
         let dev_v = v0 - w * (q * c0 - p * s0);
         let r = Self {
@@ -83,7 +83,7 @@ impl Response {
     /// The state at phase `phi`. Allocates nothing.
     #[inline]
     pub fn at(&self, phi: f64) -> State {
-        let (s, c) = phi.sin_cos();
+        let (s, c) = libm::sincos(phi);
         let tau = (phi - self.phi0) / self.w;
         let (ec, es) = homogeneous::general(self.d, self.c, tau);
         let (dx, dv) = (self.dev_x, self.dev_v);

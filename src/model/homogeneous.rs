@@ -19,34 +19,48 @@
 /// Below this `|z| = |w2| tau^2` the series is used (11 terms reach 1e-19).
 const SERIES_LIMIT: f64 = 1.0;
 
-/// `1 / ((2k)(2k - 1))` and `1 / ((2k + 1)(2k))` for k = 10, 9, …, 1: the
-/// ratios of consecutive terms, so that Horner's rule multiplies (a chain of
-/// divisions cost more than the exponential and the sine together).
-const RATIOS: [(f64, f64); 10] = {
-    let mut r = [(0.0, 0.0); 10];
-    let mut i = 0;
-    while i < 10 {
-        let k = (10 - i) as f64;
-        r[i] = (
-            1.0 / ((2.0 * k) * (2.0 * k - 1.0)),
-            1.0 / ((2.0 * k + 1.0) * (2.0 * k)),
-        );
-        i += 1;
+/// The series' coefficients `1 / (2k)!` and `1 / (2k + 1)!`, k = 0 … 10
+/// (`z^11 / 22!` < 1e-21 for `|z| <= 1`).
+const TERMS: ([f64; 11], [f64; 11]) = {
+    let mut c = [1.0; 11];
+    let mut s = [1.0; 11];
+    let mut k = 1;
+    while k < 11 {
+        let kf = k as f64;
+        c[k] = c[k - 1] / ((2.0 * kf) * (2.0 * kf - 1.0));
+        s[k] = s[k - 1] / ((2.0 * kf + 1.0) * (2.0 * kf));
+        k += 1;
     }
-    r
+    (c, s)
 };
+
+/// `sum a_k z^k`, k = 0 … 10, by Estrin's scheme: the pairs, quadruples and
+/// the last octet are independent, so their multiplications overlap where
+/// Horner's rule would chain ten of them (the series is on the hot path of
+/// every short segment).
+#[inline]
+fn estrin(a: &[f64; 11], z: f64, z2: f64, z4: f64, z8: f64) -> f64 {
+    let p01 = a[0] + a[1] * z;
+    let p23 = a[2] + a[3] * z;
+    let p45 = a[4] + a[5] * z;
+    let p67 = a[6] + a[7] * z;
+    let p89 = a[8] + a[9] * z;
+    let q0 = p01 + p23 * z2;
+    let q1 = p45 + p67 * z2;
+    let q2 = p89 + a[10] * z2;
+    (q0 + q1 * z4) + q2 * z8
+}
 
 /// `(sum z^k / (2k)!, sum z^k / (2k+1)!)`, i.e. `(cosh sqrt z, sinh sqrt z / sqrt z)`, for `|z| <= 1`.
 #[inline]
 fn series(z: f64) -> (f64, f64) {
-    // Horner from the highest kept term (k = 10).
-    let mut c = 1.0;
-    let mut s = 1.0;
-    for (rc, rs) in RATIOS {
-        c = 1.0 + z * c * rc;
-        s = 1.0 + z * s * rs;
-    }
-    (c, s)
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let z8 = z4 * z4;
+    (
+        estrin(&TERMS.0, z, z2, z4, z8),
+        estrin(&TERMS.1, z, z2, z4, z8),
+    )
 }
 
 /// `(Ec, Es)` of `x'' + 2 d x' + c x = 0` for any sign of `w2 = d^2 - c`.
@@ -69,7 +83,7 @@ pub fn general(d: f64, c: f64, tau: f64) -> (f64, f64) {
 #[inline]
 pub fn underdamped(d: f64, omega: f64, tau: f64) -> (f64, f64) {
     let e = (-d * tau).exp();
-    let (s, c) = (omega * tau).sin_cos();
+    let (s, c) = libm::sincos(omega * tau);
     (e * c, e * s / omega)
 }
 

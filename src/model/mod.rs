@@ -52,6 +52,6 @@ pub use info::{
 };
 pub use oscillator::{Coefficients, ForcedResponse, FrictionOscillator, Oscillator, Regime};
 pub use param::{ParamError, ParamSet};
-pub use piecewise::{MappingEval, Model, StickForces};
+pub use piecewise::{MappingEval, Model, Phase, StickForces};
 pub use registry::{Entry, ModelVisitor};
 pub use smooth::{SmoothInfo, SmoothModel};

@@ -24,6 +24,41 @@ pub struct StickForces {
     pub output_below: f64,
 }
 
+/// A phase `W t` together with its cosine and sine: the forcing's value at a
+/// switching point. Adjacent mappings of a cycle share their switching point,
+/// so a cycle's solver computes each `sin_cos` once ([`Model::mapping_at`])
+/// where [`Model::mapping`] computes it at both ends of every mapping.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Phase {
+    phi: f64,
+    cos: f64,
+    sin: f64,
+}
+
+impl Phase {
+    /// The phase `phi = W t` and its `cos`, `sin`.
+    #[inline]
+    pub fn new(phi: f64) -> Self {
+        let (sin, cos) = libm::sincos(phi);
+        Self { phi, cos, sin }
+    }
+    /// `W t`.
+    #[inline]
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+    /// `cos(W t)`.
+    #[inline]
+    pub fn cos(&self) -> f64 {
+        self.cos
+    }
+    /// `sin(W t)`.
+    #[inline]
+    pub fn sin(&self) -> f64 {
+        self.sin
+    }
+}
+
 /// A mapping's residual and its Jacobian blocks at one point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MappingEval {
@@ -91,6 +126,7 @@ pub trait Model: FrictionOscillator {
         phi1: f64,
     ) -> Vector2<f64>;
     /// Residual and Jacobian blocks of mapping `mapping`.
+    #[inline]
     fn mapping(
         p: &Self::Params,
         mapping: usize,
@@ -98,5 +134,16 @@ pub trait Model: FrictionOscillator {
         phi0: f64,
         x1: f64,
         phi1: f64,
+    ) -> MappingEval {
+        Self::mapping_at(p, mapping, x0, Phase::new(phi0), x1, Phase::new(phi1))
+    }
+    /// [`Model::mapping`] at phases whose `cos`, `sin` are already known.
+    fn mapping_at(
+        p: &Self::Params,
+        mapping: usize,
+        x0: f64,
+        a: Phase,
+        x1: f64,
+        b: Phase,
     ) -> MappingEval;
 }

@@ -13,7 +13,7 @@
 use nalgebra::{Matrix2, Vector2};
 use serde::Serialize;
 
-use crate::model::{MappingEval, Model};
+use crate::model::{MappingEval, Model, Phase};
 use crate::orbit::structure::Structure;
 
 /// A switching point: the start of one mapping.
@@ -258,8 +258,15 @@ impl<M: Model> PeriodicSolver<M> {
         out: &mut [MappingEval],
     ) -> f64 {
         let mut r = 0.0f64;
+        let steps = self.structure.steps();
+        // Mapping k ends where mapping k + 1 starts: each phase's `sin_cos`
+        // once (the last arrival is the first point a cycle later).
+        let mut a = Phase::new(points[0].phase);
         for (k, slot) in out.iter_mut().enumerate() {
-            let e = self.evaluate(p, points, k);
+            let next = self.next(points, k);
+            let b = Phase::new(next.phase);
+            let e = M::mapping_at(p, steps[k], points[k].x, a, next.x, b);
+            a = b;
             for v in e.residual.iter() {
                 if v.is_nan() {
                     r = f64::NAN;

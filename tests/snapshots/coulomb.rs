@@ -320,19 +320,19 @@ impl ::stickslip::Model for Coulomb {
         }
     }
     #[inline]
-    fn mapping(
+    fn mapping_at(
         p: &Params,
         mapping: usize,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         match mapping {
-            0usize => mapping_1_11(p, x0, phi0, x1, phi1),
-            1usize => mapping_2_11(p, x0, phi0, x1, phi1),
-            2usize => mapping_0_11_above(p, x0, phi0, x1, phi1),
-            3usize => mapping_0_11_below(p, x0, phi0, x1, phi1),
+            0usize => mapping_1_11(p, x0, a, x1, b),
+            1usize => mapping_2_11(p, x0, a, x1, b),
+            2usize => mapping_0_11_above(p, x0, a, x1, b),
+            3usize => mapping_0_11_below(p, x0, a, x1, b),
             _ => ::stickslip::MappingEval::NAN,
         }
     }
@@ -459,14 +459,15 @@ pub fn residual_1_11(
     )
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_1_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -475,19 +476,19 @@ pub fn mapping_1_11(
     let t4 = 1.0 / (t2.powi(2) + t3.powi(2));
     let t5 = t1 * t2 * t4;
     let t6 = t4 * (t1 * t3);
-    let t7 = phi1.cos();
-    let t8 = phi1.sin();
+    let t7 = b.cos();
+    let t8 = b.sin();
     let t9 = t5 * t7 + t6 * t8;
     let t10 = t6 * t7 - t5 * t8;
     let t11 = 1.0 / p.W;
     let t12 = -(t0 * (p.muk * (p.m * p.g)) / p.c);
-    let t13 = phi0.cos();
-    let t14 = phi0.sin();
+    let t13 = a.cos();
+    let t14 = a.sin();
     let t15 = t5 * t13 + t6 * t14;
     let t16 = t6 * t13 - t5 * t14;
     let t17 = x0 - (t12 + t15);
     let t18 = p.V - p.W * t16;
-    let t19 = t11 * (phi1 - phi0);
+    let t19 = t11 * (b.phi() - a.phi());
     let (ec20, es20) = ::stickslip::model::homogeneous::general(p.d, p.c, t19);
     let t21 = t18 + p.d * t17;
     let t22 = p.c * t17 + p.d * t18;
@@ -551,14 +552,15 @@ pub fn residual_2_11(
     )
 }
 /// Local mapping `2_11` in domain 2 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_2_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -568,17 +570,17 @@ pub fn mapping_2_11(
     let t5 = t1 * t2 * t4;
     let t6 = t4 * (t1 * t3);
     let t7 = t0 * (p.muk * (p.m * p.g)) / p.c;
-    let t8 = phi1.cos();
-    let t9 = phi1.sin();
+    let t8 = b.cos();
+    let t9 = b.sin();
     let t10 = t5 * t8 + t6 * t9;
     let t11 = t6 * t8 - t5 * t9;
     let t12 = 1.0 / p.W;
-    let t13 = phi0.cos();
-    let t14 = phi0.sin();
+    let t13 = a.cos();
+    let t14 = a.sin();
     let t15 = t5 * t13 + t6 * t14;
     let t16 = t6 * t13 - t5 * t14;
     let t17 = p.V - p.W * t16;
-    let t18 = t12 * (phi1 - phi0);
+    let t18 = t12 * (b.phi() - a.phi());
     let (ec19, es19) = ::stickslip::model::homogeneous::general(p.d, p.c, t18);
     let t20 = p.d * es19;
     let t21 = t12 * ((p.d.powi(2) - p.c) * es19 - p.d * ec19);
@@ -628,14 +630,15 @@ pub fn residual_0_11_above(
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_0_11_above(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -643,11 +646,11 @@ pub fn mapping_0_11_above(
     let t3 = p.V * t2;
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + p.V * (t2 * (phi1 - phi0))),
-            t1 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
+            -x1 + (x0 + p.V * (t2 * (b.phi() - a.phi()))),
+            t1 * b.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t3, 0.0, 0.0),
-        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * phi1.sin())),
+        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * b.sin())),
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -668,14 +671,15 @@ pub fn residual_0_11_below(
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_0_11_below(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -683,11 +687,11 @@ pub fn mapping_0_11_below(
     let t3 = p.V * t2;
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + p.V * (t2 * (phi1 - phi0))),
-            t0 * (p.mus * (p.m * p.g)) + (t1 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1),
+            -x1 + (x0 + p.V * (t2 * (b.phi() - a.phi()))),
+            t0 * (p.mus * (p.m * p.g)) + (t1 * b.cos() - p.V * (p.d * 2.0) - p.c * x1),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t3, 0.0, 0.0),
-        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * phi1.sin())),
+        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * b.sin())),
     }
 }
 /// Velocities of the boundaries, lowest first.

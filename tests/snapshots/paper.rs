@@ -513,27 +513,27 @@ impl ::stickslip::Model for Paper {
         }
     }
     #[inline]
-    fn mapping(
+    fn mapping_at(
         p: &Params,
         mapping: usize,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         match mapping {
-            0usize => mapping_1_11(p, x0, phi0, x1, phi1),
-            1usize => mapping_1_22(p, x0, phi0, x1, phi1),
-            2usize => mapping_1_21(p, x0, phi0, x1, phi1),
-            3usize => mapping_1_12(p, x0, phi0, x1, phi1),
-            4usize => mapping_2_22(p, x0, phi0, x1, phi1),
-            5usize => mapping_3_33(p, x0, phi0, x1, phi1),
-            6usize => mapping_3_11(p, x0, phi0, x1, phi1),
-            7usize => mapping_3_13(p, x0, phi0, x1, phi1),
-            8usize => mapping_3_31(p, x0, phi0, x1, phi1),
-            9usize => mapping_4_33(p, x0, phi0, x1, phi1),
-            10usize => mapping_0_11_above(p, x0, phi0, x1, phi1),
-            11usize => mapping_0_11_below(p, x0, phi0, x1, phi1),
+            0usize => mapping_1_11(p, x0, a, x1, b),
+            1usize => mapping_1_22(p, x0, a, x1, b),
+            2usize => mapping_1_21(p, x0, a, x1, b),
+            3usize => mapping_1_12(p, x0, a, x1, b),
+            4usize => mapping_2_22(p, x0, a, x1, b),
+            5usize => mapping_3_33(p, x0, a, x1, b),
+            6usize => mapping_3_11(p, x0, a, x1, b),
+            7usize => mapping_3_13(p, x0, a, x1, b),
+            8usize => mapping_3_31(p, x0, a, x1, b),
+            9usize => mapping_4_33(p, x0, a, x1, b),
+            10usize => mapping_0_11_above(p, x0, a, x1, b),
+            11usize => mapping_0_11_below(p, x0, a, x1, b),
             _ => ::stickslip::MappingEval::NAN,
         }
     }
@@ -771,21 +771,22 @@ pub fn residual_1_11(
     )
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_1_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -794,13 +795,13 @@ pub fn mapping_1_11(
     let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
+    let t14 = a.cos();
+    let t15 = a.sin();
     let t16 = t9 * t14 + t10 * t15;
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
     let t19 = p.V - p.W * t17;
-    let t20 = t6 * (phi1 - phi0);
+    let t20 = t6 * (b.phi() - a.phi());
     let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t20);
     let t22 = t19 + t2 * t18;
     let t23 = p.c * t18 + t2 * t19;
@@ -865,21 +866,22 @@ pub fn residual_1_22(
     )
 }
 /// Local mapping `1_22` in domain 1 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_1_22(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -888,12 +890,12 @@ pub fn mapping_1_22(
     let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
+    let t14 = a.cos();
+    let t15 = a.sin();
     let t16 = t9 * t14 + t10 * t15;
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
-    let t19 = t6 * (phi1 - phi0);
+    let t19 = t6 * (b.phi() - a.phi());
     let (ec20, es20) = ::stickslip::model::homogeneous::general(t2, p.c, t19);
     let t21 = t2 * es20;
     let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
@@ -959,21 +961,22 @@ pub fn residual_1_21(
     )
 }
 /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_1_21(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -982,13 +985,13 @@ pub fn mapping_1_21(
     let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
+    let t14 = a.cos();
+    let t15 = a.sin();
     let t16 = t9 * t14 + t10 * t15;
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
     let t19 = p.V - p.W * t17;
-    let t20 = t6 * (phi1 - phi0);
+    let t20 = t6 * (b.phi() - a.phi());
     let (ec21, es21) = ::stickslip::model::homogeneous::general(t2, p.c, t20);
     let t22 = t19 + t2 * t18;
     let t23 = p.c * t18 + t2 * t19;
@@ -1052,21 +1055,22 @@ pub fn residual_1_12(
     )
 }
 /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_1_12(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -1075,12 +1079,12 @@ pub fn mapping_1_12(
     let t11 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
+    let t14 = a.cos();
+    let t15 = a.sin();
     let t16 = t9 * t14 + t10 * t15;
     let t17 = t10 * t14 - t9 * t15;
     let t18 = x0 - (t11 + t16);
-    let t19 = t6 * (phi1 - phi0);
+    let t19 = t6 * (b.phi() - a.phi());
     let (ec20, es20) = ::stickslip::model::homogeneous::general(t2, p.c, t19);
     let t21 = t2 * es20;
     let t22 = t6 * ((-p.c + t2.powi(2)) * es20 - t2 * ec20);
@@ -1147,21 +1151,22 @@ pub fn residual_2_22(
     )
 }
 /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_2_22(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d + 0.5 * (p.mu1 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -1171,9 +1176,9 @@ pub fn mapping_2_22(
         / p.c);
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
-    let t16 = t6 * (phi1 - phi0);
+    let t14 = a.cos();
+    let t15 = a.sin();
+    let t16 = t6 * (b.phi() - a.phi());
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
@@ -1242,21 +1247,22 @@ pub fn residual_3_33(
     )
 }
 /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_3_33(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -1265,9 +1271,9 @@ pub fn mapping_3_33(
     let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
-    let t16 = t6 * (phi1 - phi0);
+    let t14 = a.cos();
+    let t15 = a.sin();
+    let t16 = t6 * (b.phi() - a.phi());
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
@@ -1335,21 +1341,22 @@ pub fn residual_3_11(
     )
 }
 /// Local mapping `3_11` in domain 3 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_3_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -1358,9 +1365,9 @@ pub fn mapping_3_11(
     let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
-    let t16 = t6 * (phi1 - phi0);
+    let t14 = a.cos();
+    let t15 = a.sin();
+    let t16 = t6 * (b.phi() - a.phi());
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
@@ -1428,21 +1435,22 @@ pub fn residual_3_13(
     )
 }
 /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_3_13(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -1451,9 +1459,9 @@ pub fn mapping_3_13(
     let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
-    let t16 = t6 * (phi1 - phi0);
+    let t14 = a.cos();
+    let t15 = a.sin();
+    let t16 = t6 * (b.phi() - a.phi());
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
@@ -1522,21 +1530,22 @@ pub fn residual_3_31(
     )
 }
 /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_3_31(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = 1.0 / p.W;
     let t7 = p.W * (t2 * 2.0);
     let t8 = 1.0 / (t3.powi(2) + t7.powi(2));
@@ -1545,9 +1554,9 @@ pub fn mapping_3_31(
     let t11 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
     let t12 = t4 * t9 + t5 * t10;
     let t13 = t4 * t10 - t5 * t9;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
-    let t16 = t6 * (phi1 - phi0);
+    let t14 = a.cos();
+    let t15 = a.sin();
+    let t16 = t6 * (b.phi() - a.phi());
     let t17 = t9 * t14 + t10 * t15;
     let t18 = t10 * t14 - t9 * t15;
     let t19 = x0 - (t11 + t17);
@@ -1616,14 +1625,15 @@ pub fn residual_4_33(
     )
 }
 /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_4_33(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -1634,14 +1644,14 @@ pub fn mapping_4_33(
     let t6 = t1 * t3 * t5;
     let t7 = t5 * (t1 * t4);
     let t8 = t0 * (p.muk * (p.m * p.g) + (p.mu3 * (p.V2 - p.V) + p.V2 * p.mu4)) / p.c;
-    let t9 = phi1.cos();
-    let t10 = phi1.sin();
+    let t9 = b.cos();
+    let t10 = b.sin();
     let t11 = t6 * t9 + t7 * t10;
     let t12 = t7 * t9 - t6 * t10;
     let t13 = 1.0 / p.W;
-    let t14 = phi0.cos();
-    let t15 = phi0.sin();
-    let t16 = t13 * (phi1 - phi0);
+    let t14 = a.cos();
+    let t15 = a.sin();
+    let t16 = t13 * (b.phi() - a.phi());
     let t17 = t6 * t14 + t7 * t15;
     let t18 = t7 * t14 - t6 * t15;
     let t19 = x0 - (t8 + t17);
@@ -1694,14 +1704,15 @@ pub fn residual_0_11_above(
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_0_11_above(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -1709,11 +1720,11 @@ pub fn mapping_0_11_above(
     let t3 = p.V * t2;
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + p.V * (t2 * (phi1 - phi0))),
-            t1 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
+            -x1 + (x0 + p.V * (t2 * (b.phi() - a.phi()))),
+            t1 * b.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t3, 0.0, 0.0),
-        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * phi1.sin())),
+        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * b.sin())),
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -1734,14 +1745,15 @@ pub fn residual_0_11_below(
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+/// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+/// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
 #[inline]
 pub fn mapping_0_11_below(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::MappingEval {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -1749,11 +1761,11 @@ pub fn mapping_0_11_below(
     let t3 = p.V * t2;
     ::stickslip::MappingEval {
         residual: ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + p.V * (t2 * (phi1 - phi0))),
-            t0 * (p.mus * (p.m * p.g)) + (t1 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1),
+            -x1 + (x0 + p.V * (t2 * (b.phi() - a.phi()))),
+            t0 * (p.mus * (p.m * p.g)) + (t1 * b.cos() - p.V * (p.d * 2.0) - p.c * x1),
         ),
         d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t3, 0.0, 0.0),
-        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * phi1.sin())),
+        d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t3, -p.c, -(t1 * b.sin())),
     }
 }
 /// Velocities of the boundaries, lowest first.
@@ -2202,27 +2214,27 @@ pub mod sweep_w {
             }
         }
         #[inline]
-        fn mapping(
+        fn mapping_at(
             p: &Params,
             mapping: usize,
             x0: f64,
-            phi0: f64,
+            a: ::stickslip::Phase,
             x1: f64,
-            phi1: f64,
+            b: ::stickslip::Phase,
         ) -> ::stickslip::MappingEval {
             match mapping {
-                0usize => mapping_1_11(p, x0, phi0, x1, phi1),
-                1usize => mapping_1_22(p, x0, phi0, x1, phi1),
-                2usize => mapping_1_21(p, x0, phi0, x1, phi1),
-                3usize => mapping_1_12(p, x0, phi0, x1, phi1),
-                4usize => mapping_2_22(p, x0, phi0, x1, phi1),
-                5usize => mapping_3_33(p, x0, phi0, x1, phi1),
-                6usize => mapping_3_11(p, x0, phi0, x1, phi1),
-                7usize => mapping_3_13(p, x0, phi0, x1, phi1),
-                8usize => mapping_3_31(p, x0, phi0, x1, phi1),
-                9usize => mapping_4_33(p, x0, phi0, x1, phi1),
-                10usize => mapping_0_11_above(p, x0, phi0, x1, phi1),
-                11usize => mapping_0_11_below(p, x0, phi0, x1, phi1),
+                0usize => mapping_1_11(p, x0, a, x1, b),
+                1usize => mapping_1_22(p, x0, a, x1, b),
+                2usize => mapping_1_21(p, x0, a, x1, b),
+                3usize => mapping_1_12(p, x0, a, x1, b),
+                4usize => mapping_2_22(p, x0, a, x1, b),
+                5usize => mapping_3_33(p, x0, a, x1, b),
+                6usize => mapping_3_11(p, x0, a, x1, b),
+                7usize => mapping_3_13(p, x0, a, x1, b),
+                8usize => mapping_3_31(p, x0, a, x1, b),
+                9usize => mapping_4_33(p, x0, a, x1, b),
+                10usize => mapping_0_11_above(p, x0, a, x1, b),
+                11usize => mapping_0_11_below(p, x0, a, x1, b),
                 _ => ::stickslip::MappingEval::NAN,
             }
         }
@@ -2452,18 +2464,19 @@ pub mod sweep_w {
         )
     }
     /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_11(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -2471,13 +2484,13 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
+        let t10 = a.cos();
+        let t11 = a.sin();
         let t12 = t6 * t10 + t7 * t11;
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
         let t15 = 3.0 - p.W * t13;
-        let t16 = t3 * (phi1 - phi0);
+        let t16 = t3 * (b.phi() - a.phi());
         let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2549,18 +2562,19 @@ pub mod sweep_w {
         )
     }
     /// Local mapping `1_22` in domain 1 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_22(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -2568,12 +2582,12 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
+        let t10 = a.cos();
+        let t11 = a.sin();
         let t12 = t6 * t10 + t7 * t11;
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
-        let t15 = t3 * (phi1 - phi0);
+        let t15 = t3 * (b.phi() - a.phi());
         let (ec16, es16) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2646,18 +2660,19 @@ pub mod sweep_w {
         )
     }
     /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_21(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -2665,13 +2680,13 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
+        let t10 = a.cos();
+        let t11 = a.sin();
         let t12 = t6 * t10 + t7 * t11;
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
         let t15 = 3.0 - p.W * t13;
-        let t16 = t3 * (phi1 - phi0);
+        let t16 = t3 * (b.phi() - a.phi());
         let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2743,18 +2758,19 @@ pub mod sweep_w {
         )
     }
     /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_12(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -2762,12 +2778,12 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
+        let t10 = a.cos();
+        let t11 = a.sin();
         let t12 = t6 * t10 + t7 * t11;
         let t13 = t7 * t10 - t6 * t11;
         let t14 = x0 - (-0.1406666666666667 + t12);
-        let t15 = t3 * (phi1 - phi0);
+        let t15 = t3 * (b.phi() - a.phi());
         let (ec16, es16) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2840,18 +2856,19 @@ pub mod sweep_w {
         )
     }
     /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_2_22(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = p.W * 0.22000000000000003;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -2859,9 +2876,9 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
-        let t12 = t3 * (phi1 - phi0);
+        let t10 = a.cos();
+        let t11 = a.sin();
+        let t12 = t3 * (b.phi() - a.phi());
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (-0.12266666666666669 + t13);
@@ -2938,18 +2955,19 @@ pub mod sweep_w {
         )
     }
     /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -2957,9 +2975,9 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
-        let t12 = t3 * (phi1 - phi0);
+        let t10 = a.cos();
+        let t11 = a.sin();
+        let t12 = t3 * (b.phi() - a.phi());
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
@@ -3035,18 +3053,19 @@ pub mod sweep_w {
         )
     }
     /// Local mapping `3_11` in domain 3 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_11(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -3054,9 +3073,9 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
-        let t12 = t3 * (phi1 - phi0);
+        let t10 = a.cos();
+        let t11 = a.sin();
+        let t12 = t3 * (b.phi() - a.phi());
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
@@ -3132,18 +3151,19 @@ pub mod sweep_w {
         )
     }
     /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_13(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -3151,9 +3171,9 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
-        let t12 = t3 * (phi1 - phi0);
+        let t10 = a.cos();
+        let t11 = a.sin();
+        let t12 = t3 * (b.phi() - a.phi());
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
@@ -3229,18 +3249,19 @@ pub mod sweep_w {
         )
     }
     /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_31(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 1.0 / p.W;
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t0.powi(2) + t4.powi(2));
@@ -3248,9 +3269,9 @@ pub mod sweep_w {
         let t7 = t5 * (14.0 * t4);
         let t8 = t1 * t6 + t2 * t7;
         let t9 = t1 * t7 - t2 * t6;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
-        let t12 = t3 * (phi1 - phi0);
+        let t10 = a.cos();
+        let t11 = a.sin();
+        let t12 = t3 * (b.phi() - a.phi());
         let t13 = t6 * t10 + t7 * t11;
         let t14 = t7 * t10 - t6 * t11;
         let t15 = x0 - (0.12866666666666668 + t13);
@@ -3326,28 +3347,29 @@ pub mod sweep_w {
         )
     }
     /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_4_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 30.0 - p.W.powi(2);
         let t1 = p.W * 0.30000000000000004;
         let t2 = 1.0 / (t0.powi(2) + t1.powi(2));
         let t3 = 14.0 * t0 * t2;
         let t4 = t2 * (14.0 * t1);
-        let t5 = phi1.cos();
-        let t6 = phi1.sin();
+        let t5 = b.cos();
+        let t6 = b.sin();
         let t7 = t3 * t5 + t4 * t6;
         let t8 = t4 * t5 - t3 * t6;
         let t9 = 1.0 / p.W;
-        let t10 = phi0.cos();
-        let t11 = phi0.sin();
-        let t12 = t9 * (phi1 - phi0);
+        let t10 = a.cos();
+        let t11 = a.sin();
+        let t12 = t9 * (b.phi() - a.phi());
         let t13 = t3 * t10 + t4 * t11;
         let t14 = t4 * t10 - t3 * t11;
         let t15 = x0 - (0.13466666666666668 + t13);
@@ -3403,28 +3425,29 @@ pub mod sweep_w {
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_0_11_above(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 1.0 / p.W;
         let t1 = 3.0 * t0;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
-                -x1 + (x0 + 3.0 * (t0 * (phi1 - phi0))),
-                14.0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
+                -x1 + (x0 + 3.0 * (t0 * (b.phi() - a.phi()))),
+                14.0 * b.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t1, 0.0, 0.0),
             d_next: ::stickslip::nalgebra::Matrix2::new(
                 -1.0,
                 t1,
                 -30.0,
-                -(14.0 * phi1.sin()),
+                -(14.0 * b.sin()),
             ),
         }
     }
@@ -3444,28 +3467,29 @@ pub mod sweep_w {
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_0_11_below(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = 1.0 / p.W;
         let t1 = 3.0 * t0;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
-                -x1 + (x0 + 3.0 * (t0 * (phi1 - phi0))),
-                4.9 + (14.0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
+                -x1 + (x0 + 3.0 * (t0 * (b.phi() - a.phi()))),
+                4.9 + (14.0 * b.cos() + -0.6000000000000001 - 30.0 * x1),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t1, 0.0, 0.0),
             d_next: ::stickslip::nalgebra::Matrix2::new(
                 -1.0,
                 t1,
                 -30.0,
-                -(14.0 * phi1.sin()),
+                -(14.0 * b.sin()),
             ),
         }
     }
@@ -3909,25 +3933,25 @@ pub mod reference {
             }
         }
         #[inline]
-        fn mapping(
+        fn mapping_at(
             p: &Params,
             mapping: usize,
             x0: f64,
-            phi0: f64,
+            a: ::stickslip::Phase,
             x1: f64,
-            phi1: f64,
+            b: ::stickslip::Phase,
         ) -> ::stickslip::MappingEval {
             match mapping {
-                0usize => mapping_1_11(p, x0, phi0, x1, phi1),
-                1usize => mapping_1_21(p, x0, phi0, x1, phi1),
-                2usize => mapping_1_12(p, x0, phi0, x1, phi1),
-                3usize => mapping_2_22(p, x0, phi0, x1, phi1),
-                4usize => mapping_3_33(p, x0, phi0, x1, phi1),
-                5usize => mapping_3_13(p, x0, phi0, x1, phi1),
-                6usize => mapping_3_31(p, x0, phi0, x1, phi1),
-                7usize => mapping_4_33(p, x0, phi0, x1, phi1),
-                8usize => mapping_0_11_above(p, x0, phi0, x1, phi1),
-                9usize => mapping_0_11_below(p, x0, phi0, x1, phi1),
+                0usize => mapping_1_11(p, x0, a, x1, b),
+                1usize => mapping_1_21(p, x0, a, x1, b),
+                2usize => mapping_1_12(p, x0, a, x1, b),
+                3usize => mapping_2_22(p, x0, a, x1, b),
+                4usize => mapping_3_33(p, x0, a, x1, b),
+                5usize => mapping_3_13(p, x0, a, x1, b),
+                6usize => mapping_3_31(p, x0, a, x1, b),
+                7usize => mapping_4_33(p, x0, a, x1, b),
+                8usize => mapping_0_11_above(p, x0, a, x1, b),
+                9usize => mapping_0_11_below(p, x0, a, x1, b),
                 _ => ::stickslip::MappingEval::NAN,
             }
         }
@@ -4166,19 +4190,20 @@ pub mod reference {
         )
     }
     /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_11(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = 0.1 * p.W;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4186,13 +4211,13 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
+        let t11 = a.cos();
+        let t12 = a.sin();
         let t13 = t7 * t11 + t8 * t12;
         let t14 = t8 * t11 - t7 * t12;
         let t15 = x0 - (-0.1406666666666667 + t13);
         let t16 = 3.0 - p.W * t14;
-        let t17 = t4 * (phi1 - phi0);
+        let t17 = t4 * (b.phi() - a.phi());
         let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4265,19 +4290,20 @@ pub mod reference {
         )
     }
     /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_21(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = 0.1 * p.W;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4285,13 +4311,13 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
+        let t11 = a.cos();
+        let t12 = a.sin();
         let t13 = t7 * t11 + t8 * t12;
         let t14 = t8 * t11 - t7 * t12;
         let t15 = x0 - (-0.1406666666666667 + t13);
         let t16 = 3.0 - p.W * t14;
-        let t17 = t4 * (phi1 - phi0);
+        let t17 = t4 * (b.phi() - a.phi());
         let (ec18, es18) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4364,19 +4390,20 @@ pub mod reference {
         )
     }
     /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_1_12(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = 0.1 * p.W;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4384,12 +4411,12 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
+        let t11 = a.cos();
+        let t12 = a.sin();
         let t13 = t7 * t11 + t8 * t12;
         let t14 = t8 * t11 - t7 * t12;
         let t15 = x0 - (-0.1406666666666667 + t13);
-        let t16 = t4 * (phi1 - phi0);
+        let t16 = t4 * (b.phi() - a.phi());
         let (ec17, es17) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4463,19 +4490,20 @@ pub mod reference {
         )
     }
     /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_2_22(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = p.W * 0.22000000000000003;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4483,9 +4511,9 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
-        let t13 = t4 * (phi1 - phi0);
+        let t11 = a.cos();
+        let t12 = a.sin();
+        let t13 = t4 * (b.phi() - a.phi());
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (-0.12266666666666669 + t14);
@@ -4563,19 +4591,20 @@ pub mod reference {
         )
     }
     /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = p.W * 0.18;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4583,9 +4612,9 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
-        let t13 = t4 * (phi1 - phi0);
+        let t11 = a.cos();
+        let t12 = a.sin();
+        let t13 = t4 * (b.phi() - a.phi());
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
@@ -4662,19 +4691,20 @@ pub mod reference {
         )
     }
     /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_13(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = p.W * 0.18;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4682,9 +4712,9 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
-        let t13 = t4 * (phi1 - phi0);
+        let t11 = a.cos();
+        let t12 = a.sin();
+        let t13 = t4 * (b.phi() - a.phi());
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
@@ -4761,19 +4791,20 @@ pub mod reference {
         )
     }
     /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_3_31(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 1.0 / p.W;
         let t5 = p.W * 0.18;
         let t6 = 1.0 / (t1.powi(2) + t5.powi(2));
@@ -4781,9 +4812,9 @@ pub mod reference {
         let t8 = t6 * (t0 * t5);
         let t9 = t2 * t7 + t3 * t8;
         let t10 = t2 * t8 - t3 * t7;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
-        let t13 = t4 * (phi1 - phi0);
+        let t11 = a.cos();
+        let t12 = a.sin();
+        let t13 = t4 * (b.phi() - a.phi());
         let t14 = t7 * t11 + t8 * t12;
         let t15 = t8 * t11 - t7 * t12;
         let t16 = x0 - (0.12866666666666668 + t14);
@@ -4860,14 +4891,15 @@ pub mod reference {
         )
     }
     /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_4_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
@@ -4875,14 +4907,14 @@ pub mod reference {
         let t3 = 1.0 / (t1.powi(2) + t2.powi(2));
         let t4 = t0 * t1 * t3;
         let t5 = t3 * (t0 * t2);
-        let t6 = phi1.cos();
-        let t7 = phi1.sin();
+        let t6 = b.cos();
+        let t7 = b.sin();
         let t8 = t4 * t6 + t5 * t7;
         let t9 = t5 * t6 - t4 * t7;
         let t10 = 1.0 / p.W;
-        let t11 = phi0.cos();
-        let t12 = phi0.sin();
-        let t13 = t10 * (phi1 - phi0);
+        let t11 = a.cos();
+        let t12 = a.sin();
+        let t13 = t10 * (b.phi() - a.phi());
         let t14 = t4 * t11 + t5 * t12;
         let t15 = t5 * t11 - t4 * t12;
         let t16 = x0 - (0.13466666666666668 + t14);
@@ -4938,30 +4970,26 @@ pub mod reference {
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_0_11_above(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 1.0 / p.W;
         let t2 = 3.0 * t1;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
-                -x1 + (x0 + 3.0 * (t1 * (phi1 - phi0))),
-                t0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
+                -x1 + (x0 + 3.0 * (t1 * (b.phi() - a.phi()))),
+                t0 * b.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t2, 0.0, 0.0),
-            d_next: ::stickslip::nalgebra::Matrix2::new(
-                -1.0,
-                t2,
-                -30.0,
-                -(t0 * phi1.sin()),
-            ),
+            d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t2, -30.0, -(t0 * b.sin())),
         }
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -4980,30 +5008,26 @@ pub mod reference {
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.
+    /// Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,
+    /// from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.
     #[inline]
     pub fn mapping_0_11_below(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::MappingEval {
         let t0 = p.Q0 * 0.2;
         let t1 = 1.0 / p.W;
         let t2 = 3.0 * t1;
         ::stickslip::MappingEval {
             residual: ::stickslip::nalgebra::Vector2::new(
-                -x1 + (x0 + 3.0 * (t1 * (phi1 - phi0))),
-                4.9 + (t0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
+                -x1 + (x0 + 3.0 * (t1 * (b.phi() - a.phi()))),
+                4.9 + (t0 * b.cos() + -0.6000000000000001 - 30.0 * x1),
             ),
             d_prev: ::stickslip::nalgebra::Matrix2::new(1.0, -t2, 0.0, 0.0),
-            d_next: ::stickslip::nalgebra::Matrix2::new(
-                -1.0,
-                t2,
-                -30.0,
-                -(t0 * phi1.sin()),
-            ),
+            d_next: ::stickslip::nalgebra::Matrix2::new(-1.0, t2, -30.0, -(t0 * b.sin())),
         }
     }
     /// Velocities of the boundaries, lowest first.

@@ -27,6 +27,9 @@ struct Writer<'g> {
     g: &'g Graph,
     params: &'g [Ident],
     vars: HashMap<u32, Ident>,
+    /// Variables passed as a `::stickslip::Phase`: read as `a.phi()`, and
+    /// their `cos`, `sin` as `a.cos()`, `a.sin()` (computed once by the caller).
+    phases: HashMap<u32, Ident>,
     bound: HashMap<Id, Ident>,
 }
 
@@ -70,6 +73,9 @@ impl Writer<'_> {
                 (quote!(p.#name), Prec::Atom)
             }
             Node::Var(k) => {
+                if let Some(phase) = self.phases.get(&k) {
+                    return (quote!(#phase.phi()), Prec::Atom);
+                }
                 let name = &self.vars[&k];
                 (quote!(#name), Prec::Atom)
             }
@@ -111,12 +117,23 @@ impl Writer<'_> {
             Node::Sqrt(a) => self.method(a, "sqrt"),
             Node::Exp(a) => self.method(a, "exp"),
             Node::Ln(a) => self.method(a, "ln"),
-            Node::Sin(a) => self.method(a, "sin"),
-            Node::Cos(a) => self.method(a, "cos"),
+            Node::Sin(a) => self.trig(a, "sin"),
+            Node::Cos(a) => self.trig(a, "cos"),
             Node::Abs(a) => self.method(a, "abs"),
             Node::Sign(a) => self.method(a, "signum"),
             Node::Hom(..) => unreachable!("homogeneous pairs are always bound"),
         }
+    }
+
+    /// `sin`/`cos` of `a`: the caller's value when `a` is a phase variable.
+    fn trig(&self, a: Id, name: &str) -> (TokenStream, Prec) {
+        if let Node::Var(k) = self.g.node(a) {
+            if let Some(phase) = self.phases.get(&k) {
+                let m = format_ident!("{}", name);
+                return (quote!(#phase.#m()), Prec::Atom);
+            }
+        }
+        self.method(a, name)
     }
 
     fn method(&self, a: Id, name: &str) -> (TokenStream, Prec) {
@@ -156,6 +173,18 @@ pub(super) fn straight_line(
     vars: &[(u32, &str)],
     outputs: &[Id],
 ) -> (TokenStream, Vec<TokenStream>) {
+    straight_line_with_phases(g, params, vars, &[], outputs)
+}
+
+/// [`straight_line`] where the variables `phases` are `::stickslip::Phase`
+/// arguments: their `cos` and `sin` come with them instead of being computed.
+pub(super) fn straight_line_with_phases(
+    g: &Graph,
+    params: &[Ident],
+    vars: &[(u32, &str)],
+    phases: &[(u32, &str)],
+    outputs: &[Id],
+) -> (TokenStream, Vec<TokenStream>) {
     let n = outputs.iter().map(|o| o.0 as usize + 1).max().unwrap_or(0);
     let mut reach = vec![false; n];
     let mut uses = vec![0u32; n];
@@ -177,6 +206,10 @@ pub(super) fn straight_line(
         g,
         params,
         vars: vars
+            .iter()
+            .map(|(k, name)| (*k, format_ident!("{}", name)))
+            .collect(),
+        phases: phases
             .iter()
             .map(|(k, name)| (*k, format_ident!("{}", name)))
             .collect(),

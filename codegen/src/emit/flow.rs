@@ -7,7 +7,7 @@
 use proc_macro2::{Ident, TokenStream};
 use quote::{format_ident, quote};
 
-use super::expression::{doc, doc1, straight_line};
+use super::expression::{doc, doc1, straight_line, straight_line_with_phases};
 use crate::equations::Equations;
 use crate::expand::{Instance, MappingDecl, Route};
 use crate::expr::Graph;
@@ -146,7 +146,13 @@ fn mapping_functions(e: &Equations, pnames: &[Ident], out: &mut Functions) {
 
         let mut outputs = eq.residual.to_vec();
         outputs.extend(&eq.jacobian);
-        let (stmts, outs) = straight_line(g, pnames, &mapping_vars, &outputs);
+        let (stmts, outs) = straight_line_with_phases(
+            g,
+            pnames,
+            &[(0, "x0"), (2, "x1")],
+            &[(1, "a"), (3, "b")],
+            &outputs,
+        );
         let (f1, f2) = (&outs[0], &outs[1]);
         let j = &outs[2..];
         let (a00, a01, b00, b01) = (&j[0], &j[1], &j[2], &j[3]);
@@ -154,12 +160,13 @@ fn mapping_functions(e: &Equations, pnames: &[Ident], out: &mut Functions) {
         let mf = format_ident!("mapping_{}", m.fn_name);
         let dc = doc(&[
             what,
-            "Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`.".into(),
+            "Residual and its exact Jacobian blocks `∂f/∂(x_i, W t_i)` and `∂f/∂(x_{i+1}, W t_{i+1})`,".into(),
+            "from `(x0, a)` to `(x1, b)`: the phases `a`, `b` carry their `cos` and `sin`.".into(),
         ]);
         out.items.extend(quote! {
             #dc
             #[inline]
-            pub fn #mf(p: &Params, x0: f64, phi0: f64, x1: f64, phi1: f64) -> ::stickslip::MappingEval {
+            pub fn #mf(p: &Params, x0: f64, a: ::stickslip::Phase, x1: f64, b: ::stickslip::Phase) -> ::stickslip::MappingEval {
                 #stmts
                 ::stickslip::MappingEval {
                     residual: ::stickslip::nalgebra::Vector2::new(#f1, #f2),
@@ -168,8 +175,7 @@ fn mapping_functions(e: &Equations, pnames: &[Ident], out: &mut Functions) {
                 }
             }
         });
-        out.mapping
-            .extend(quote!(#idx => #mf(p, x0, phi0, x1, phi1),));
+        out.mapping.extend(quote!(#idx => #mf(p, x0, a, x1, b),));
     }
 }
 

@@ -56,7 +56,7 @@ pub(super) fn model_impl(type_ident: &Ident, type_doc: &[String], f: &Functions)
                 match mapping { #residual _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN) }
             }
             #[inline]
-            fn mapping(p: &Params, mapping: usize, x0: f64, phi0: f64, x1: f64, phi1: f64) -> ::stickslip::MappingEval {
+            fn mapping_at(p: &Params, mapping: usize, x0: f64, a: ::stickslip::Phase, x1: f64, b: ::stickslip::Phase) -> ::stickslip::MappingEval {
                 match mapping { #mapping _ => ::stickslip::MappingEval::NAN }
             }
         }
