@@ -247,7 +247,7 @@ fn dual_vec4(p: &paper::Params, x0: f64, phi0: f64, x1: f64, phi1: f64) -> Mappi
 #[inline(never)]
 fn finite_diff(p: &paper::Params, x0: f64, phi0: f64, x1: f64, phi1: f64) -> MappingEval {
     let u = [x0, phi0, x1, phi1];
-    let r = |u: [f64; 4]| paper::residual_3_31(p, u[0], u[1], u[2], u[3]);
+    let r = |u: [f64; 4]| paper::residual_3_31(p, u[0], Phase::new(u[1]), u[2], Phase::new(u[3]));
     let residual = r(u);
     let mut cols = [Vector2::zeros(); 4];
     for (i, col) in cols.iter_mut().enumerate() {
@@ -337,8 +337,8 @@ fn check_agreement() {
                 "{label}: {name} disagrees with the generated mapping: {diff:e}\n{eval:?}\nvs\n{gen:?}"
             );
         }
-        let r_full = paper::residual_3_31(&p, x0, phi0, x1, phi1);
-        let r_scene = sweep_w::residual_3_31(&scene, x0, phi0, x1, phi1);
+        let r_full = paper::residual_3_31(&p, x0, Phase::new(phi0), x1, Phase::new(phi1));
+        let r_scene = sweep_w::residual_3_31(&scene, x0, Phase::new(phi0), x1, Phase::new(phi1));
         assert!((r_full - gen.residual).amax() <= 1e-14);
         assert!((r_scene - gen.residual).amax() <= 1e-12);
     }
@@ -418,8 +418,17 @@ fn bench_residual(c: &mut Criterion) {
     let p = params();
     let scene = sweep_w::Params { W: p.W };
     let mut g = c.benchmark_group("residual");
-    at_point(&mut g, "generated", &p, paper::residual_3_31);
-    at_point(&mut g, "scene_specialized", &scene, sweep_w::residual_3_31);
+    at_point(&mut g, "generated", &p, |p, x0, phi0, x1, phi1| {
+        paper::residual_3_31(p, x0, Phase::new(phi0), x1, Phase::new(phi1))
+    });
+    at_point(
+        &mut g,
+        "scene_specialized",
+        &scene,
+        |p, x0, phi0, x1, phi1| {
+            sweep_w::residual_3_31(p, x0, Phase::new(phi0), x1, Phase::new(phi1))
+        },
+    );
     g.finish();
 }
 

@@ -117,6 +117,7 @@ pub trait Model: FrictionOscillator {
     /// Forces on the stick boundary at `(x, phi)`.
     fn stick_forces(p: &Self::Params, x: f64, phi: f64) -> Option<StickForces>;
     /// Residual of mapping `mapping` from `(x0, phi0)` to `(x1, phi1)`.
+    #[inline]
     fn residual(
         p: &Self::Params,
         mapping: usize,
@@ -124,6 +125,17 @@ pub trait Model: FrictionOscillator {
         phi0: f64,
         x1: f64,
         phi1: f64,
+    ) -> Vector2<f64> {
+        Self::residual_at(p, mapping, x0, Phase::new(phi0), x1, Phase::new(phi1))
+    }
+    /// [`Model::residual`] at phases whose `cos`, `sin` are already known.
+    fn residual_at(
+        p: &Self::Params,
+        mapping: usize,
+        x0: f64,
+        a: Phase,
+        x1: f64,
+        b: Phase,
     ) -> Vector2<f64>;
     /// Residual and Jacobian blocks of mapping `mapping`.
     #[inline]

@@ -236,9 +236,15 @@ impl<M: Model> PeriodicSolver<M> {
     /// Largest residual component over all mappings (NaN propagates).
     pub fn residual(&self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
         let mut r = 0.0f64;
+        let Some(first) = points.first() else {
+            return r;
+        };
+        let mut a = Phase::new(first.phase);
         for k in 0..points.len() {
-            let (a, b) = (points[k], self.next(points, k));
-            let f = M::residual(p, self.structure.steps()[k], a.x, a.phase, b.x, b.phase);
+            let next = self.next(points, k);
+            let b = Phase::new(next.phase);
+            let f = M::residual_at(p, self.structure.steps()[k], points[k].x, a, next.x, b);
+            a = b;
             for v in f.iter() {
                 if v.is_nan() {
                     return f64::NAN;

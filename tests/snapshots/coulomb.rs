@@ -303,19 +303,19 @@ impl ::stickslip::Model for Coulomb {
         Some(stick_forces(p, x, phi))
     }
     #[inline]
-    fn residual(
+    fn residual_at(
         p: &Params,
         mapping: usize,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         match mapping {
-            0usize => residual_1_11(p, x0, phi0, x1, phi1),
-            1usize => residual_2_11(p, x0, phi0, x1, phi1),
-            2usize => residual_0_11_above(p, x0, phi0, x1, phi1),
-            3usize => residual_0_11_below(p, x0, phi0, x1, phi1),
+            0usize => residual_1_11(p, x0, a, x1, b),
+            1usize => residual_2_11(p, x0, a, x1, b),
+            2usize => residual_0_11_above(p, x0, a, x1, b),
+            3usize => residual_0_11_below(p, x0, a, x1, b),
             _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN),
         }
     }
@@ -428,14 +428,14 @@ pub fn normal_field_1(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
     [t3, -(p.W * (t1 * phi.sin()) + (p.c * y + t2 * t3))]
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_1_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -444,14 +444,14 @@ pub fn residual_1_11(
     let t4 = 1.0 / (t2.powi(2) + t3.powi(2));
     let t5 = t1 * t2 * t4;
     let t6 = t4 * (t1 * t3);
-    let t7 = phi1.cos();
-    let t8 = phi1.sin();
+    let t7 = b.cos();
+    let t8 = b.sin();
     let t9 = -(t0 * (p.muk * (p.m * p.g)) / p.c);
-    let t10 = phi0.cos();
-    let t11 = phi0.sin();
+    let t10 = a.cos();
+    let t11 = a.sin();
     let t12 = x0 - (t9 + (t5 * t10 + t6 * t11));
     let t13 = p.V - p.W * (t6 * t10 - t5 * t11);
-    let t14 = 1.0 / p.W * (phi1 - phi0);
+    let t14 = 1.0 / p.W * (b.phi() - a.phi());
     let (ec15, es15) = ::stickslip::model::homogeneous::general(p.d, p.c, t14);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t5 * t7 + t6 * t8 + t9 + (t12 * ec15 + es15 * (t13 + p.d * t12))),
@@ -520,14 +520,14 @@ pub fn mapping_1_11(
     }
 }
 /// Local mapping `2_11` in domain 2 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_2_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -537,12 +537,12 @@ pub fn residual_2_11(
     let t5 = t1 * t2 * t4;
     let t6 = t4 * (t1 * t3);
     let t7 = t0 * (p.muk * (p.m * p.g)) / p.c;
-    let t8 = phi1.cos();
-    let t9 = phi1.sin();
-    let t10 = phi0.cos();
-    let t11 = phi0.sin();
+    let t8 = b.cos();
+    let t9 = b.sin();
+    let t10 = a.cos();
+    let t11 = a.sin();
     let t12 = p.V - p.W * (t6 * t10 - t5 * t11);
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let (ec14, es14) = ::stickslip::model::homogeneous::general(p.d, p.c, t13);
     let t15 = x0 - (t7 + (t5 * t10 + t6 * t11));
     ::stickslip::nalgebra::Vector2::new(
@@ -613,20 +613,19 @@ pub fn mapping_2_11(
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_0_11_above(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (x0 + p.V * (1.0 / p.W * (phi1 - phi0))),
-        p.Q0 * t0 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1
-            - t0 * (p.mus * (p.m * p.g)),
+        -x1 + (x0 + p.V * (1.0 / p.W * (b.phi() - a.phi()))),
+        p.Q0 * t0 * b.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
@@ -654,20 +653,19 @@ pub fn mapping_0_11_above(
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_0_11_below(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (x0 + p.V * (1.0 / p.W * (phi1 - phi0))),
-        t0 * (p.mus * (p.m * p.g))
-            + (p.Q0 * t0 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1),
+        -x1 + (x0 + p.V * (1.0 / p.W * (b.phi() - a.phi()))),
+        t0 * (p.mus * (p.m * p.g)) + (p.Q0 * t0 * b.cos() - p.V * (p.d * 2.0) - p.c * x1),
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.

@@ -488,27 +488,27 @@ impl ::stickslip::Model for Paper {
         Some(stick_forces(p, x, phi))
     }
     #[inline]
-    fn residual(
+    fn residual_at(
         p: &Params,
         mapping: usize,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         match mapping {
-            0usize => residual_1_11(p, x0, phi0, x1, phi1),
-            1usize => residual_1_22(p, x0, phi0, x1, phi1),
-            2usize => residual_1_21(p, x0, phi0, x1, phi1),
-            3usize => residual_1_12(p, x0, phi0, x1, phi1),
-            4usize => residual_2_22(p, x0, phi0, x1, phi1),
-            5usize => residual_3_33(p, x0, phi0, x1, phi1),
-            6usize => residual_3_11(p, x0, phi0, x1, phi1),
-            7usize => residual_3_13(p, x0, phi0, x1, phi1),
-            8usize => residual_3_31(p, x0, phi0, x1, phi1),
-            9usize => residual_4_33(p, x0, phi0, x1, phi1),
-            10usize => residual_0_11_above(p, x0, phi0, x1, phi1),
-            11usize => residual_0_11_below(p, x0, phi0, x1, phi1),
+            0usize => residual_1_11(p, x0, a, x1, b),
+            1usize => residual_1_22(p, x0, a, x1, b),
+            2usize => residual_1_21(p, x0, a, x1, b),
+            3usize => residual_1_12(p, x0, a, x1, b),
+            4usize => residual_2_22(p, x0, a, x1, b),
+            5usize => residual_3_33(p, x0, a, x1, b),
+            6usize => residual_3_11(p, x0, a, x1, b),
+            7usize => residual_3_13(p, x0, a, x1, b),
+            8usize => residual_3_31(p, x0, a, x1, b),
+            9usize => residual_4_33(p, x0, a, x1, b),
+            10usize => residual_0_11_above(p, x0, a, x1, b),
+            11usize => residual_0_11_below(p, x0, a, x1, b),
             _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN),
         }
     }
@@ -739,31 +739,31 @@ pub fn normal_field_2(p: &Params, x: f64, y: f64, phi: f64) -> [f64; 2] {
     [t3, -(p.W * (t1 * phi.sin()) + (p.c * y + t3 * (p.mu1 * t0 + t2)))]
 }
 /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_1_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
+    let t11 = a.cos();
+    let t12 = a.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t14 = p.V - p.W * (t9 * t11 - t8 * t12);
-    let t15 = 1.0 / p.W * (phi1 - phi0);
+    let t15 = 1.0 / p.W * (b.phi() - a.phi());
     let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t15);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
@@ -833,30 +833,30 @@ pub fn mapping_1_11(
     }
 }
 /// Local mapping `1_22` in domain 1 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_1_22(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
+    let t11 = a.cos();
+    let t12 = a.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t14 = 1.0 / p.W * (phi1 - phi0);
+    let t14 = 1.0 / p.W * (b.phi() - a.phi());
     let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t14);
     let t16 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
@@ -928,31 +928,31 @@ pub fn mapping_1_22(
     }
 }
 /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_1_21(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
+    let t11 = a.cos();
+    let t12 = a.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t14 = p.V - p.W * (t9 * t11 - t8 * t12);
-    let t15 = 1.0 / p.W * (phi1 - phi0);
+    let t15 = 1.0 / p.W * (b.phi() - a.phi());
     let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t15);
     ::stickslip::nalgebra::Vector2::new(
         -x1 + (t10 + (t4 * t8 + t5 * t9) + (t13 * ec16 + es16 * (t14 + t2 * t13))),
@@ -1023,30 +1023,30 @@ pub fn mapping_1_21(
     }
 }
 /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_1_12(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu2 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = -(t0 * (p.muk * (p.m * p.g) + p.V * p.mu2) / p.c);
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
+    let t11 = a.cos();
+    let t12 = a.sin();
     let t13 = x0 - (t10 + (t8 * t11 + t9 * t12));
-    let t14 = 1.0 / p.W * (phi1 - phi0);
+    let t14 = 1.0 / p.W * (b.phi() - a.phi());
     let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t14);
     let t16 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     ::stickslip::nalgebra::Vector2::new(
@@ -1117,30 +1117,30 @@ pub fn mapping_1_12(
     }
 }
 /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_2_22(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d + 0.5 * (p.mu1 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = -(t0 * (p.muk * (p.m * p.g) - (p.mu2 * (p.V1 - p.V) + p.V1 * p.mu1))
         / p.c);
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t11 = a.cos();
+    let t12 = a.sin();
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t15 = p.V1 - p.W * (t9 * t11 - t8 * t12);
     let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
@@ -1214,29 +1214,29 @@ pub fn mapping_2_22(
     }
 }
 /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_3_33(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t11 = a.cos();
+    let t12 = a.sin();
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t15 = p.V2 - p.W * (t9 * t11 - t8 * t12);
     let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
@@ -1309,29 +1309,29 @@ pub fn mapping_3_33(
     }
 }
 /// Local mapping `3_11` in domain 3 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_3_11(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t11 = a.cos();
+    let t12 = a.sin();
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     let t16 = p.V - p.W * (t9 * t11 - t8 * t12);
@@ -1403,29 +1403,29 @@ pub fn mapping_3_11(
     }
 }
 /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_3_13(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t11 = a.cos();
+    let t12 = a.sin();
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let t15 = p.V2 - p.W * (t9 * t11 - t8 * t12);
     let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
@@ -1497,29 +1497,29 @@ pub fn mapping_3_13(
     }
 }
 /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_3_31(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
     let t2 = p.d - 0.5 * (p.mu3 * t0);
     let t3 = p.c - p.W.powi(2);
-    let t4 = phi1.cos();
-    let t5 = phi1.sin();
+    let t4 = b.cos();
+    let t5 = b.sin();
     let t6 = p.W * (t2 * 2.0);
     let t7 = 1.0 / (t3.powi(2) + t6.powi(2));
     let t8 = t1 * t3 * t7;
     let t9 = t7 * (t1 * t6);
     let t10 = t0 * (p.muk * (p.m * p.g) - p.V * p.mu3) / p.c;
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t11 = a.cos();
+    let t12 = a.sin();
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let t14 = x0 - (t10 + (t8 * t11 + t9 * t12));
     let (ec15, es15) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
     let t16 = p.V - p.W * (t9 * t11 - t8 * t12);
@@ -1592,14 +1592,14 @@ pub fn mapping_3_31(
     }
 }
 /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_4_33(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     let t1 = p.Q0 * t0;
@@ -1610,11 +1610,11 @@ pub fn residual_4_33(
     let t6 = t1 * t3 * t5;
     let t7 = t5 * (t1 * t4);
     let t8 = t0 * (p.muk * (p.m * p.g) + (p.mu3 * (p.V2 - p.V) + p.V2 * p.mu4)) / p.c;
-    let t9 = phi1.cos();
-    let t10 = phi1.sin();
-    let t11 = phi0.cos();
-    let t12 = phi0.sin();
-    let t13 = 1.0 / p.W * (phi1 - phi0);
+    let t9 = b.cos();
+    let t10 = b.sin();
+    let t11 = a.cos();
+    let t12 = a.sin();
+    let t13 = 1.0 / p.W * (b.phi() - a.phi());
     let t14 = x0 - (t8 + (t6 * t11 + t7 * t12));
     let t15 = p.V2 - p.W * (t7 * t11 - t6 * t12);
     let (ec16, es16) = ::stickslip::model::homogeneous::general(t2, p.c, t13);
@@ -1687,20 +1687,19 @@ pub fn mapping_4_33(
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_0_11_above(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (x0 + p.V * (1.0 / p.W * (phi1 - phi0))),
-        p.Q0 * t0 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1
-            - t0 * (p.mus * (p.m * p.g)),
+        -x1 + (x0 + p.V * (1.0 / p.W * (b.phi() - a.phi()))),
+        p.Q0 * t0 * b.cos() - p.V * (p.d * 2.0) - p.c * x1 - t0 * (p.mus * (p.m * p.g)),
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
@@ -1728,20 +1727,19 @@ pub fn mapping_0_11_above(
     }
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-/// Residual `f` only.
+/// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
 #[inline]
 pub fn residual_0_11_below(
     p: &Params,
     x0: f64,
-    phi0: f64,
+    a: ::stickslip::Phase,
     x1: f64,
-    phi1: f64,
+    b: ::stickslip::Phase,
 ) -> ::stickslip::nalgebra::Vector2<f64> {
     let t0 = 1.0 / p.m;
     ::stickslip::nalgebra::Vector2::new(
-        -x1 + (x0 + p.V * (1.0 / p.W * (phi1 - phi0))),
-        t0 * (p.mus * (p.m * p.g))
-            + (p.Q0 * t0 * phi1.cos() - p.V * (p.d * 2.0) - p.c * x1),
+        -x1 + (x0 + p.V * (1.0 / p.W * (b.phi() - a.phi()))),
+        t0 * (p.mus * (p.m * p.g)) + (p.Q0 * t0 * b.cos() - p.V * (p.d * 2.0) - p.c * x1),
     )
 }
 /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -2189,27 +2187,27 @@ pub mod sweep_w {
             Some(stick_forces(p, x, phi))
         }
         #[inline]
-        fn residual(
+        fn residual_at(
             p: &Params,
             mapping: usize,
             x0: f64,
-            phi0: f64,
+            a: ::stickslip::Phase,
             x1: f64,
-            phi1: f64,
+            b: ::stickslip::Phase,
         ) -> ::stickslip::nalgebra::Vector2<f64> {
             match mapping {
-                0usize => residual_1_11(p, x0, phi0, x1, phi1),
-                1usize => residual_1_22(p, x0, phi0, x1, phi1),
-                2usize => residual_1_21(p, x0, phi0, x1, phi1),
-                3usize => residual_1_12(p, x0, phi0, x1, phi1),
-                4usize => residual_2_22(p, x0, phi0, x1, phi1),
-                5usize => residual_3_33(p, x0, phi0, x1, phi1),
-                6usize => residual_3_11(p, x0, phi0, x1, phi1),
-                7usize => residual_3_13(p, x0, phi0, x1, phi1),
-                8usize => residual_3_31(p, x0, phi0, x1, phi1),
-                9usize => residual_4_33(p, x0, phi0, x1, phi1),
-                10usize => residual_0_11_above(p, x0, phi0, x1, phi1),
-                11usize => residual_0_11_below(p, x0, phi0, x1, phi1),
+                0usize => residual_1_11(p, x0, a, x1, b),
+                1usize => residual_1_22(p, x0, a, x1, b),
+                2usize => residual_1_21(p, x0, a, x1, b),
+                3usize => residual_1_12(p, x0, a, x1, b),
+                4usize => residual_2_22(p, x0, a, x1, b),
+                5usize => residual_3_33(p, x0, a, x1, b),
+                6usize => residual_3_11(p, x0, a, x1, b),
+                7usize => residual_3_13(p, x0, a, x1, b),
+                8usize => residual_3_31(p, x0, a, x1, b),
+                9usize => residual_4_33(p, x0, a, x1, b),
+                10usize => residual_0_11_above(p, x0, a, x1, b),
+                11usize => residual_0_11_below(p, x0, a, x1, b),
                 _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN),
             }
         }
@@ -2428,27 +2426,27 @@ pub mod sweep_w {
         [t0, -(p.W * (14.0 * phi.sin())) + (-30.0 * y + t0 * -0.22000000000000003)]
     }
     /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_11(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
+        let t7 = a.cos();
+        let t8 = a.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
         let t10 = 3.0 - p.W * (t6 * t7 - t5 * t8);
-        let t11 = 1.0 / p.W * (phi1 - phi0);
+        let t11 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2526,26 +2524,26 @@ pub mod sweep_w {
         }
     }
     /// Local mapping `1_22` in domain 1 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_22(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
+        let t7 = a.cos();
+        let t8 = a.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2624,27 +2622,27 @@ pub mod sweep_w {
         }
     }
     /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_21(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
+        let t7 = a.cos();
+        let t8 = a.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
         let t10 = 3.0 - p.W * (t6 * t7 - t5 * t8);
-        let t11 = 1.0 / p.W * (phi1 - phi0);
+        let t11 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2722,26 +2720,26 @@ pub mod sweep_w {
         }
     }
     /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_12(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = 0.1 * p.W;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
+        let t7 = a.cos();
+        let t8 = a.sin();
         let t9 = x0 - (-0.1406666666666667 + (t5 * t7 + t6 * t8));
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -2820,25 +2818,25 @@ pub mod sweep_w {
         }
     }
     /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_2_22(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = p.W * 0.22000000000000003;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
-        let t9 = 1.0 / p.W * (phi1 - phi0);
+        let t7 = a.cos();
+        let t8 = a.sin();
+        let t9 = 1.0 / p.W * (b.phi() - a.phi());
         let t10 = x0 - (-0.12266666666666669 + (t5 * t7 + t6 * t8));
         let t11 = 4.5 - p.W * (t6 * t7 - t5 * t8);
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
@@ -2919,25 +2917,25 @@ pub mod sweep_w {
         }
     }
     /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
-        let t9 = 1.0 / p.W * (phi1 - phi0);
+        let t7 = a.cos();
+        let t8 = a.sin();
+        let t9 = 1.0 / p.W * (b.phi() - a.phi());
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let t11 = 1.5 - p.W * (t6 * t7 - t5 * t8);
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
@@ -3017,25 +3015,25 @@ pub mod sweep_w {
         }
     }
     /// Local mapping `3_11` in domain 3 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_11(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
-        let t9 = 1.0 / p.W * (phi1 - phi0);
+        let t7 = a.cos();
+        let t8 = a.sin();
+        let t9 = 1.0 / p.W * (b.phi() - a.phi());
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.09,
@@ -3115,25 +3113,25 @@ pub mod sweep_w {
         }
     }
     /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_13(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
-        let t9 = 1.0 / p.W * (phi1 - phi0);
+        let t7 = a.cos();
+        let t8 = a.sin();
+        let t9 = 1.0 / p.W * (b.phi() - a.phi());
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let t11 = 1.5 - p.W * (t6 * t7 - t5 * t8);
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
@@ -3213,25 +3211,25 @@ pub mod sweep_w {
         }
     }
     /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_31(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
-        let t1 = phi1.cos();
-        let t2 = phi1.sin();
+        let t1 = b.cos();
+        let t2 = b.sin();
         let t3 = p.W * 0.18;
         let t4 = 1.0 / (t0.powi(2) + t3.powi(2));
         let t5 = 14.0 * t0 * t4;
         let t6 = t4 * (14.0 * t3);
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
-        let t9 = 1.0 / p.W * (phi1 - phi0);
+        let t7 = a.cos();
+        let t8 = a.sin();
+        let t9 = 1.0 / p.W * (b.phi() - a.phi());
         let t10 = x0 - (0.12866666666666668 + (t5 * t7 + t6 * t8));
         let (ec11, es11) = ::stickslip::model::homogeneous::underdamped(
             0.09,
@@ -3311,25 +3309,25 @@ pub mod sweep_w {
         }
     }
     /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_4_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = 30.0 - p.W.powi(2);
         let t1 = p.W * 0.30000000000000004;
         let t2 = 1.0 / (t0.powi(2) + t1.powi(2));
         let t3 = 14.0 * t0 * t2;
         let t4 = t2 * (14.0 * t1);
-        let t5 = phi1.cos();
-        let t6 = phi1.sin();
-        let t7 = phi0.cos();
-        let t8 = phi0.sin();
-        let t9 = 1.0 / p.W * (phi1 - phi0);
+        let t5 = b.cos();
+        let t6 = b.sin();
+        let t7 = a.cos();
+        let t8 = a.sin();
+        let t9 = 1.0 / p.W * (b.phi() - a.phi());
         let t10 = x0 - (0.13466666666666668 + (t3 * t7 + t4 * t8));
         let t11 = 1.5 - p.W * (t4 * t7 - t3 * t8);
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
@@ -3410,18 +3408,18 @@ pub mod sweep_w {
         }
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_0_11_above(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
-            14.0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (b.phi() - a.phi()))),
+            14.0 * b.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
@@ -3452,18 +3450,18 @@ pub mod sweep_w {
         }
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_0_11_below(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
-            4.9 + (14.0 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (b.phi() - a.phi()))),
+            4.9 + (14.0 * b.cos() + -0.6000000000000001 - 30.0 * x1),
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
@@ -3910,25 +3908,25 @@ pub mod reference {
             Some(stick_forces(p, x, phi))
         }
         #[inline]
-        fn residual(
+        fn residual_at(
             p: &Params,
             mapping: usize,
             x0: f64,
-            phi0: f64,
+            a: ::stickslip::Phase,
             x1: f64,
-            phi1: f64,
+            b: ::stickslip::Phase,
         ) -> ::stickslip::nalgebra::Vector2<f64> {
             match mapping {
-                0usize => residual_1_11(p, x0, phi0, x1, phi1),
-                1usize => residual_1_21(p, x0, phi0, x1, phi1),
-                2usize => residual_1_12(p, x0, phi0, x1, phi1),
-                3usize => residual_2_22(p, x0, phi0, x1, phi1),
-                4usize => residual_3_33(p, x0, phi0, x1, phi1),
-                5usize => residual_3_13(p, x0, phi0, x1, phi1),
-                6usize => residual_3_31(p, x0, phi0, x1, phi1),
-                7usize => residual_4_33(p, x0, phi0, x1, phi1),
-                8usize => residual_0_11_above(p, x0, phi0, x1, phi1),
-                9usize => residual_0_11_below(p, x0, phi0, x1, phi1),
+                0usize => residual_1_11(p, x0, a, x1, b),
+                1usize => residual_1_21(p, x0, a, x1, b),
+                2usize => residual_1_12(p, x0, a, x1, b),
+                3usize => residual_2_22(p, x0, a, x1, b),
+                4usize => residual_3_33(p, x0, a, x1, b),
+                5usize => residual_3_13(p, x0, a, x1, b),
+                6usize => residual_3_31(p, x0, a, x1, b),
+                7usize => residual_4_33(p, x0, a, x1, b),
+                8usize => residual_0_11_above(p, x0, a, x1, b),
+                9usize => residual_0_11_below(p, x0, a, x1, b),
                 _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN),
             }
         }
@@ -4153,28 +4151,28 @@ pub mod reference {
         [t1, -(p.W * (t0 * phi.sin())) + (-30.0 * y + t1 * -0.22000000000000003)]
     }
     /// Local mapping `1_11` in domain 1 from Sigma1 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_11(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
+        let t8 = a.cos();
+        let t9 = a.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
         let t11 = 3.0 - p.W * (t7 * t8 - t6 * t9);
-        let t12 = 1.0 / p.W * (phi1 - phi0);
+        let t12 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4253,28 +4251,28 @@ pub mod reference {
         }
     }
     /// Global mapping `1_21` in domain 1 from Sigma1 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_21(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
+        let t8 = a.cos();
+        let t9 = a.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
         let t11 = 3.0 - p.W * (t7 * t8 - t6 * t9);
-        let t12 = 1.0 / p.W * (phi1 - phi0);
+        let t12 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4353,27 +4351,27 @@ pub mod reference {
         }
     }
     /// Global mapping `1_12` in domain 1 from Sigma2 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_1_12(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = 0.1 * p.W;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
+        let t8 = a.cos();
+        let t9 = a.sin();
         let t10 = x0 - (-0.1406666666666667 + (t6 * t8 + t7 * t9));
-        let t11 = 1.0 / p.W * (phi1 - phi0);
+        let t11 = 1.0 / p.W * (b.phi() - a.phi());
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.05,
             5.476997352564633,
@@ -4453,26 +4451,26 @@ pub mod reference {
         }
     }
     /// Local mapping `2_22` in domain 2 from Sigma2 to Sigma2 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_2_22(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = p.W * 0.22000000000000003;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t8 = a.cos();
+        let t9 = a.sin();
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let t11 = x0 - (-0.12266666666666669 + (t6 * t8 + t7 * t9));
         let t12 = 4.5 - p.W * (t7 * t8 - t6 * t9);
         let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
@@ -4554,26 +4552,26 @@ pub mod reference {
         }
     }
     /// Local mapping `3_33` in domain 3 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t8 = a.cos();
+        let t9 = a.sin();
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
         let t12 = 1.5 - p.W * (t7 * t8 - t6 * t9);
         let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
@@ -4654,26 +4652,26 @@ pub mod reference {
         }
     }
     /// Global mapping `3_13` in domain 3 from Sigma3 to Sigma1 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_13(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t8 = a.cos();
+        let t9 = a.sin();
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
         let t12 = 1.5 - p.W * (t7 * t8 - t6 * t9);
         let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
@@ -4754,26 +4752,26 @@ pub mod reference {
         }
     }
     /// Global mapping `3_31` in domain 3 from Sigma1 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_3_31(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
-        let t2 = phi1.cos();
-        let t3 = phi1.sin();
+        let t2 = b.cos();
+        let t3 = b.sin();
         let t4 = p.W * 0.18;
         let t5 = 1.0 / (t1.powi(2) + t4.powi(2));
         let t6 = t0 * t1 * t5;
         let t7 = t5 * (t0 * t4);
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t8 = a.cos();
+        let t9 = a.sin();
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let t11 = x0 - (0.12866666666666668 + (t6 * t8 + t7 * t9));
         let (ec12, es12) = ::stickslip::model::homogeneous::underdamped(
             0.09,
@@ -4854,14 +4852,14 @@ pub mod reference {
         }
     }
     /// Local mapping `4_33` in domain 4 from Sigma3 to Sigma3 (Eq. 38): `f1 = x_j(t_{i+1}) - x_{i+1}`, `f2 = v_j(t_{i+1}) - V_β`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_4_33(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         let t0 = p.Q0 * 0.2;
         let t1 = 30.0 - p.W.powi(2);
@@ -4869,11 +4867,11 @@ pub mod reference {
         let t3 = 1.0 / (t1.powi(2) + t2.powi(2));
         let t4 = t0 * t1 * t3;
         let t5 = t3 * (t0 * t2);
-        let t6 = phi1.cos();
-        let t7 = phi1.sin();
-        let t8 = phi0.cos();
-        let t9 = phi0.sin();
-        let t10 = 1.0 / p.W * (phi1 - phi0);
+        let t6 = b.cos();
+        let t7 = b.sin();
+        let t8 = a.cos();
+        let t9 = a.sin();
+        let t10 = 1.0 / p.W * (b.phi() - a.phi());
         let t11 = x0 - (0.13466666666666668 + (t4 * t8 + t5 * t9));
         let t12 = 1.5 - p.W * (t5 * t8 - t4 * t9);
         let (ec13, es13) = ::stickslip::model::homogeneous::underdamped(
@@ -4955,18 +4953,18 @@ pub mod reference {
         }
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_0_11_above(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
-            p.Q0 * 0.2 * phi1.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (b.phi() - a.phi()))),
+            p.Q0 * 0.2 * b.cos() + -0.6000000000000001 - 30.0 * x1 + -4.9,
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving upwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) - as`.
@@ -4993,18 +4991,18 @@ pub mod reference {
         }
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.
-    /// Residual `f` only.
+    /// Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`).
     #[inline]
     pub fn residual_0_11_below(
         p: &Params,
         x0: f64,
-        phi0: f64,
+        a: ::stickslip::Phase,
         x1: f64,
-        phi1: f64,
+        b: ::stickslip::Phase,
     ) -> ::stickslip::nalgebra::Vector2<f64> {
         ::stickslip::nalgebra::Vector2::new(
-            -x1 + (x0 + 3.0 * (1.0 / p.W * (phi1 - phi0))),
-            4.9 + (p.Q0 * 0.2 * phi1.cos() + -0.6000000000000001 - 30.0 * x1),
+            -x1 + (x0 + 3.0 * (1.0 / p.W * (b.phi() - a.phi()))),
+            4.9 + (p.Q0 * 0.2 * b.cos() + -0.6000000000000001 - 30.0 * x1),
         )
     }
     /// Stick mapping `0_11` on Sigma1 leaving downwards (Eq. 37): `f1 = x_i + V (t_{i+1} - t_i) - x_{i+1}`, `f2 = Fnf(x_{i+1}, t_{i+1}) + as`.

@@ -126,23 +126,31 @@ fn mapping_doc(inst: &Instance, m: &MappingDecl) -> String {
 
 fn mapping_functions(e: &Equations, pnames: &[Ident], out: &mut Functions) {
     let g: &Graph = &e.instance.lowered.graph;
-    let mapping_vars: [(u32, &str); 4] = [(0, "x0"), (1, "phi0"), (2, "x1"), (3, "phi1")];
     for (idx, (m, eq)) in e.instance.mappings.iter().zip(&e.mappings).enumerate() {
         let what = mapping_doc(&e.instance, m);
-        let (stmts, outs) = straight_line(g, pnames, &mapping_vars, &eq.residual);
+        let (stmts, outs) = straight_line_with_phases(
+            g,
+            pnames,
+            &[(0, "x0"), (2, "x1")],
+            &[(1, "a"), (3, "b")],
+            &eq.residual,
+        );
         let (f1, f2) = (&outs[0], &outs[1]);
         let rf = format_ident!("residual_{}", m.fn_name);
-        let dc = doc(&[what.clone(), "Residual `f` only.".into()]);
+        let dc = doc(&[
+            what.clone(),
+            "Residual `f` only, from `(x0, a)` to `(x1, b)` (phases with their `cos`, `sin`)."
+                .into(),
+        ]);
         out.items.extend(quote! {
             #dc
             #[inline]
-            pub fn #rf(p: &Params, x0: f64, phi0: f64, x1: f64, phi1: f64) -> ::stickslip::nalgebra::Vector2<f64> {
+            pub fn #rf(p: &Params, x0: f64, a: ::stickslip::Phase, x1: f64, b: ::stickslip::Phase) -> ::stickslip::nalgebra::Vector2<f64> {
                 #stmts
                 ::stickslip::nalgebra::Vector2::new(#f1, #f2)
             }
         });
-        out.residual
-            .extend(quote!(#idx => #rf(p, x0, phi0, x1, phi1),));
+        out.residual.extend(quote!(#idx => #rf(p, x0, a, x1, b),));
 
         let mut outputs = eq.residual.to_vec();
         outputs.extend(&eq.jacobian);

@@ -52,7 +52,7 @@ pub(super) fn model_impl(type_ident: &Ident, type_doc: &[String], f: &Functions)
             #[inline]
             fn stick_forces(p: &Params, x: f64, phi: f64) -> ::core::option::Option<::stickslip::StickForces> { #stick_forces }
             #[inline]
-            fn residual(p: &Params, mapping: usize, x0: f64, phi0: f64, x1: f64, phi1: f64) -> ::stickslip::nalgebra::Vector2<f64> {
+            fn residual_at(p: &Params, mapping: usize, x0: f64, a: ::stickslip::Phase, x1: f64, b: ::stickslip::Phase) -> ::stickslip::nalgebra::Vector2<f64> {
                 match mapping { #residual _ => ::stickslip::nalgebra::Vector2::repeat(f64::NAN) }
             }
             #[inline]
