@@ -508,7 +508,21 @@ impl<M: Model> Continuer<'_, M> {
             // Eigenvalue bifurcations on the step.
             if s_c > 0.0 {
                 let mut before: Option<Sample> = None;
-                for (at, kind) in self.bifurcations(&prev, &cand, s_c) {
+                let mut found = self.bifurcations(&prev, &cand, s_c);
+                if matches!(reason, Some(EndReason::Transition { .. })) {
+                    // At a grazing arrival `DP` diverges (the arrival's
+                    // block is singular), so its eigenvalues leave the unit
+                    // disc as the branch's end is approached: a crossing the
+                    // locator cannot tell from the end (within its own
+                    // tolerance in the parameter) is the transition's, not a bifurcation of
+                    // its own (`P_{3_33 4_33}` at its grazing of Σ3, Q0 = 100:
+                    // |λ| = 0.63 at 1e-12 before the end, 1 at it).
+                    // (In the parameter: the switching points move like the
+                    // square root of the distance to a grazing.)
+                    let tol = self.opts.bifurcation_tolerance;
+                    found.retain(|(at, _)| (at.state.value - cand.state.value).abs() > tol);
+                }
+                for (at, kind) in found {
                     // Two bifurcations on one step (a Neimark–Sacker point
                     // and a period doubling near a 1:2 resonance): a point
                     // between them, so that the stretch between has a point

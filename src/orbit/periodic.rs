@@ -197,6 +197,14 @@ impl<M: Model> PeriodicSolver<M> {
         1e-11 * l * w.max(1.0)
     }
 
+    /// The rounding of a residual evaluated in closed form at a motion of
+    /// length scale `l`: 64 ulps of its displacements (scale `l`) and
+    /// velocities (scale `l W`).
+    fn rounding(p: &M::Params, l: f64) -> f64 {
+        let w = M::oscillator(p).frequency.abs();
+        64.0 * f64::EPSILON * l * w.max(1.0)
+    }
+
     /// Size of the Newton step in the workspace, each unknown in its natural
     /// unit: phases in radians, displacements over the length scale `l`;
     /// a component within 8 ulps of its unknown counts as the tolerance
@@ -410,8 +418,19 @@ impl<M: Model> PeriodicSolver<M> {
                     reason: s.reason.into(),
                 };
             }
-            let size = self.step_size(points, Self::length_scale(p, points), opts.tolerance);
+            let l = Self::length_scale(p, points);
+            let size = self.step_size(points, l, opts.tolerance);
             last_step = size;
+            if size <= opts.tolerance && r <= Self::rounding(p, l) {
+                // A step below the tolerance that corrects a residual at the
+                // rounding of the closed form itself: it is that rounding's
+                // noise, and taking it (one more evaluation of every
+                // mapping) cannot make the point any better.
+                return Termination::Converged {
+                    iterations: it,
+                    residual: r,
+                };
+            }
             if size > 1e-2 && r <= Self::residual_floor(p, points) {
                 // The point solves the equations to the rounding of the
                 // closed form, yet Newton proposes to move it by a sizeable
