@@ -513,12 +513,12 @@ impl<M: Model> Continuer<'_, M> {
                     // At a grazing arrival `DP` diverges (the arrival's
                     // block is singular), so its eigenvalues leave the unit
                     // disc as the branch's end is approached: a crossing the
-                    // locator cannot tell from the end (within its own
-                    // tolerance in the parameter) is the transition's, not a bifurcation of
-                    // its own (`P_{3_33 4_33}` at its grazing of Σ3, Q0 = 100:
-                    // |λ| = 0.63 at 1e-12 before the end, 1 at it).
-                    // (In the parameter: the switching points move like the
-                    // square root of the distance to a grazing.)
+                    // locator cannot tell from the end is the transition's,
+                    // not a bifurcation of its own (`P_{3_33 4_33}` at its
+                    // grazing of Σ3, Q0 = 100: |λ| = 0.63 at 1e-12 before
+                    // the end, 1 at it). Measured in the parameter: the
+                    // switching points move like the square root of the
+                    // distance to a grazing, the arclength with them.
                     let tol = self.opts.bifurcation_tolerance;
                     found.retain(|(at, _)| (at.state.value - cand.state.value).abs() > tol);
                 }
