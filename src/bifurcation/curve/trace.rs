@@ -312,7 +312,10 @@ impl<M: Model> Tracer<'_, M> {
             let good = if closed || good.other.is_nan() || good.other <= 0.0 {
                 good
             } else {
-                let bound = self.plane_distance(&good.x, &cand.x);
+                // Within a few of the step's lengths in the plane (the
+                // candidate past the point may lie on another root of the
+                // arrival's equation: no bracket).
+                let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);
                 self.pair_point(&good, bound).unwrap_or(good)
             };
             let reason = CurveEndReason::Codim2 { kind, boundary };
