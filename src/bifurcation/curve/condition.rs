@@ -308,6 +308,36 @@ impl<M: Model> Evaluator<M> {
         best
     }
 
+    /// [`Self::other`] as the admissibility walk measures it, a stick's
+    /// end by the event search (its phase difference plus the phase
+    /// tolerance): what a sweep sees, whose sign says where the motion
+    /// stops existing. Its zeros, not its magnitude, locate a
+    /// codimension-two end.
+    pub fn other_event(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> (f64, Option<ConditionId>) {
+        let (Condition::Margin { .. } | Condition::Eigen(_), Some(structure)) =
+            (self.condition, &self.structure)
+        else {
+            return self.other(p, points);
+        };
+        if self.sim.set_params(*p).is_err() {
+            return (f64::NEG_INFINITY, None);
+        }
+        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+        match admissible::worst_margin_except(
+            &self.sim,
+            structure,
+            points,
+            &self.excluded[..self.excluded_len],
+        ) {
+            Some(w) => (key(w.margin), Some((w.kind, w.segment, w.boundary))),
+            None => (f64::INFINITY, None),
+        }
+    }
+
     /// A second evaluator of the same motion for condition `id` (a margin
     /// that vanishes with this one at a codimension-two point).
     pub fn companion(&self, id: ConditionId) -> Self {

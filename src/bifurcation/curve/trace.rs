@@ -39,9 +39,14 @@ use crate::bifurcation::locate::regula_falsi;
 pub(super) struct Sample {
     pub x: Vec<f64>,
     pub t: Vec<f64>,
-    /// The smallest margin of the conditions that must keep holding.
+    /// The smallest margin of the conditions that must keep holding (a
+    /// stick's end by its smooth margin), and which.
     pub other: f64,
     pub worst: Option<ConditionId>,
+    /// The same with a stick's end by the event search: where it turns
+    /// non-positive a codimension-two end is located.
+    pub other_event: f64,
+    pub worst_event: Option<ConditionId>,
     /// `det(I − DP)`, `det(I + DP)` (NaN without `DP`).
     pub plus: f64,
     pub minus: f64,
@@ -104,6 +109,7 @@ impl<M: Model> Tracer<'_, M> {
             None
         };
         let (other, worst) = self.sys.eval.other(&p, &pts);
+        let (other_event, worst_event) = self.sys.eval.other_event(&p, &pts);
         let (plus, minus, disc) = dp.map_or((f64::NAN, f64::NAN, f64::NAN), |d| {
             let (tr, det) = (d.trace(), d.determinant());
             (1.0 - tr + det, 1.0 + tr + det, tr * tr - 4.0 * det)
@@ -113,6 +119,8 @@ impl<M: Model> Tracer<'_, M> {
             t,
             other,
             worst,
+            other_event,
+            worst_event,
             plus,
             minus,
             disc,
@@ -289,11 +297,15 @@ impl<M: Model> Tracer<'_, M> {
         // The pair of a Neimark–Sacker curve turns real: a 1:1 or 1:2 resonance.
         let turns_real =
             ns && prev.disc < 0.0 && cand.disc.partial_cmp(&0.0) != Some(std::cmp::Ordering::Less);
-        let lost = cand.other.is_nan() || cand.other <= 0.0;
+        let lost = cand.other_event.is_nan() || cand.other_event <= 0.0;
         if lost {
-            let (good, bad) = self.locate(prev, s_c, cand.other, |s| s.other);
+            let (good, bad) = self.locate(prev, s_c, cand.other_event, |s| s.other_event);
+            // Named by the smooth margins (the event search's margin of a
+            // stick's end is its phase tolerance wherever the stick ends as
+            // claimed: the smallest, but not what vanishes).
             let (kind, boundary) = good
                 .worst
+                .or(good.worst_event)
                 .or(bad.as_ref().and_then(|b| b.worst))
                 .or(cand.worst)
                 .map_or((TransitionKind::Grazing, None), |(k, _, b)| {
@@ -301,22 +313,27 @@ impl<M: Model> Tracer<'_, M> {
                 });
             // Where the corrector fails near the point (the curve's system
             // turning singular there, as where an arrival before a stick
-            // turns tangential) the bracket closes on failed trials, not on
-            // a bad one next to the good: solve the point directly.
+            // turns tangential) the bracket closes on failed trials, or on
+            // a candidate on the far root of that arrival's equation: solve
+            // the point directly. Where the last good trial is that point
+            // already, to the location tolerance, it stays the end.
             let tol = self.opts.location_tolerance;
-            let closed = bad.as_ref().is_some_and(|b| {
-                let n = b.x.len();
-                (b.x[n - 2] - good.x[n - 2]).abs() <= tol
-                    && (b.x[n - 1] - good.x[n - 1]).abs() <= tol
-            });
-            let good = if closed || good.other.is_nan() || good.other <= 0.0 {
+            let n = good.x.len();
+            let good = if good.other.is_nan() || good.other <= 0.0 {
                 good
             } else {
-                // Within a few of the step's lengths in the plane (the
-                // candidate past the point may lie on another root of the
-                // arrival's equation: no bracket).
+                // Within a few of the step's lengths in the plane (no
+                // bracket: the candidate may lie on another root).
                 let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);
-                self.pair_point(&good, bound).unwrap_or(good)
+                match self.pair_point(&good, bound) {
+                    Some(at)
+                        if (at.x[n - 2] - good.x[n - 2]).abs() > tol
+                            || (at.x[n - 1] - good.x[n - 1]).abs() > tol =>
+                    {
+                        at
+                    }
+                    _ => good,
+                }
             };
             let reason = CurveEndReason::Codim2 { kind, boundary };
             if !(turns_real && good.disc >= 0.0) {
