@@ -24,7 +24,7 @@ use nalgebra::Matrix2;
 use super::Condition;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
-use crate::model::Model;
+use crate::model::{MappingKind, Model};
 use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
 use crate::orbit::periodic::{monodromy, SwitchingPoint};
 use crate::orbit::steady::steady_response;
@@ -80,6 +80,13 @@ pub(super) struct Evaluator<M: Model> {
     /// those that vanish with it), the first `excluded_len`.
     excluded: [ConditionId; 8],
     excluded_len: usize,
+    /// The stick ends of the structure (`StickEnd`, segment, boundary), and
+    /// after them the excluded conditions: what the walk of
+    /// [`Self::other`] leaves out (built once, no allocation per point).
+    /// A stick's end is watched by its smooth margin instead
+    /// ([`Self::stick_ends`]).
+    walk_excluded: Vec<ConditionId>,
+    stick_ends: usize,
 }
 
 /// At most this many conditions vanish with a curve's own.
@@ -94,6 +101,18 @@ impl<M: Model> Evaluator<M> {
         rest_domain: usize,
     ) -> Result<Self, String> {
         let sim = Simulator::<M>::new(*p, SimOptions::default()).map_err(|e| e.to_string())?;
+        let info = M::INFO;
+        let mut walk_excluded = Vec::new();
+        if let Some(s) = structure {
+            for (k, &step) in s.steps().iter().enumerate() {
+                let mi = info.mappings[step];
+                if mi.kind == MappingKind::Stick {
+                    walk_excluded.push((ViolationKind::StickEnd, k, Some(mi.from)));
+                }
+            }
+        }
+        let stick_ends = walk_excluded.len();
+        walk_excluded.reserve_exact(MAX_EXCLUDED);
         Ok(Self {
             condition,
             steps: structure.map_or(Vec::new(), |s| s.steps().to_vec()),
@@ -106,6 +125,8 @@ impl<M: Model> Evaluator<M> {
                 Condition::Margin { .. } => 1,
                 _ => 0,
             },
+            walk_excluded,
+            stick_ends,
         })
         .map(|mut e: Self| {
             if let Condition::Margin {
@@ -116,32 +137,72 @@ impl<M: Model> Evaluator<M> {
             {
                 e.excluded[0] = (kind, segment, boundary);
             }
+            e.sync_excluded();
             e
         })
     }
 
+    /// The walk's exclusions: the stick ends, then the excluded conditions.
+    fn sync_excluded(&mut self) {
+        self.walk_excluded.truncate(self.stick_ends);
+        self.walk_excluded
+            .extend_from_slice(&self.excluded[..self.excluded_len]);
+    }
+
+    fn exclude(&mut self, id: ConditionId) {
+        if self.excluded_len < MAX_EXCLUDED && !self.excluded[..self.excluded_len].contains(&id) {
+            self.excluded[self.excluded_len] = id;
+            self.excluded_len += 1;
+        }
+    }
+
+    /// The smooth margin of the stick end `id` (`orbit::admissible::margin_of`:
+    /// `as ∓ Fnf` at the stick's interior extrema of `Fnf`), `None` where
+    /// `Fnf` has no interior extremum (no early end to watch).
+    fn stick_end_margin(
+        &self,
+        structure: &Structure,
+        points: &[SwitchingPoint],
+        id: ConditionId,
+    ) -> Option<f64> {
+        admissible::margin_of(&self.sim, structure, points, id)
+    }
+
     /// Leave out of [`Self::other`] every condition that vanishes with the
     /// curve's own at `(points, p)` (a point of the curve): margin within
-    /// [`SAME_EVENT`] of zero (absolute, in the quantity's unit). A
+    /// [`SAME_EVENT`] of zero (absolute, in the quantity's unit; a stick's
+    /// end by its smooth margin, as [`Self::other`] watches it). A
     /// transition where a segment shrinks to nothing makes its duration,
     /// its departure and arrival and the force criteria there vanish
     /// together, all along the curve: they are one event, not a
     /// codimension-two point.
     pub fn exclude_companions(&mut self, p: &M::Params, points: &[SwitchingPoint]) {
-        let (Condition::Margin { .. }, Some(structure)) = (self.condition, &self.structure) else {
+        let (Condition::Margin { .. }, Some(structure)) = (self.condition, self.structure.clone())
+        else {
             return;
         };
         if self.sim.set_params(*p).is_err() {
             return;
         }
-        for c in admissible::conditions(&self.sim, structure, points) {
+        for c in admissible::conditions(&self.sim, &structure, points) {
             let id = (c.kind, c.segment, c.boundary);
-            if c.margin.abs() <= SAME_EVENT
-                && self.excluded_len < MAX_EXCLUDED
-                && !self.excluded[..self.excluded_len].contains(&id)
+            // The event search's margin of a stick's end is its phase
+            // tolerance wherever the stick ends as claimed: no measure of
+            // how near an early end is.
+            if c.kind == ViolationKind::StickEnd {
+                continue;
+            }
+            if c.margin.abs() <= SAME_EVENT {
+                self.exclude(id);
+            }
+        }
+        for i in 0..self.stick_ends {
+            let id = self.walk_excluded[i];
+            if self
+                .stick_end_margin(&structure, points, id)
+                .is_some_and(|m| m.abs() <= SAME_EVENT)
             {
-                self.excluded[self.excluded_len] = id;
-                self.excluded_len += 1;
+                self.exclude(id);
             }
         }
         // A departure or arrival tangential all along the curve puts the
@@ -153,15 +214,10 @@ impl<M: Model> Evaluator<M> {
             if let (ViolationKind::Arrival | ViolationKind::Departure, segment, Some(b)) =
                 self.excluded[i]
             {
-                let id = (ViolationKind::Interior, segment, Some(b));
-                if self.excluded_len < MAX_EXCLUDED
-                    && !self.excluded[..self.excluded_len].contains(&id)
-                {
-                    self.excluded[self.excluded_len] = id;
-                    self.excluded_len += 1;
-                }
+                self.exclude((ViolationKind::Interior, segment, Some(b)));
             }
         }
+        self.sync_excluded();
     }
 
     /// The condition's value at `(points, p)`: zero on the curve, NaN
@@ -190,15 +246,24 @@ impl<M: Model> Evaluator<M> {
     }
 
     /// The smallest margin of the conditions that must hold along the curve
-    /// besides its own (NaN counts as −∞), with the condition's kind and
-    /// boundary: for a `Margin` curve every other condition of the motion
-    /// (those that vanish with it left out, see [`Self::exclude_companions`]); for an `Eigen` curve every
-    /// condition; for `RestGrazing` the domain's other boundary.
+    /// besides its own (NaN counts as −∞), with the condition (kind,
+    /// segment, boundary): for a `Margin` curve every other condition of the
+    /// motion (those that vanish with it left out, see
+    /// [`Self::exclude_companions`]); for an `Eigen` curve every condition;
+    /// for `RestGrazing` the domain's other boundary (segment 0).
+    ///
+    /// A stick's end is watched by its smooth margin (`as ∓ Fnf` at the
+    /// stick's interior extrema of `Fnf`, none without one), not by the
+    /// event search's phase difference: that one is the phase tolerance
+    /// (`1e-7` of the phase, a constant `2e-6` at phase 20) wherever the
+    /// stick ends as claimed, so on a motion with a stick it would be the
+    /// smallest margin all along the curve and hide the one that falls to
+    /// zero at a codimension-two end.
     pub fn other(
         &mut self,
         p: &M::Params,
         points: &[SwitchingPoint],
-    ) -> (f64, Option<(ViolationKind, Option<usize>)>) {
+    ) -> (f64, Option<ConditionId>) {
         let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
         if let Condition::RestGrazing { boundary } = self.condition {
             let dom = M::INFO.domains[self.rest_domain];
@@ -209,7 +274,7 @@ impl<M: Model> Evaluator<M> {
                 .map(|k| {
                     (
                         key(rest_margin::<M>(p, self.rest_domain, k)),
-                        Some((ViolationKind::Interior, Some(k))),
+                        Some((ViolationKind::Interior, 0, Some(k))),
                     )
                 })
                 .fold((f64::INFINITY, None), |a, b| if b.0 < a.0 { b } else { a });
@@ -220,19 +285,69 @@ impl<M: Model> Evaluator<M> {
         if self.sim.set_params(*p).is_err() {
             return (f64::NEG_INFINITY, None);
         }
-        let worst = match self.condition {
-            Condition::Margin { .. } => admissible::worst_margin_except(
-                &self.sim,
-                structure,
-                points,
-                &self.excluded[..self.excluded_len],
-            ),
-            _ => admissible::worst_margin(&self.sim, structure, points),
+        let mut best = match admissible::worst_margin_except(
+            &self.sim,
+            structure,
+            points,
+            &self.walk_excluded,
+        ) {
+            Some(w) => (key(w.margin), Some((w.kind, w.segment, w.boundary))),
+            None => (f64::INFINITY, None),
         };
-        match worst {
-            Some(w) => (key(w.margin), Some((w.kind, w.boundary))),
+        for i in 0..self.stick_ends {
+            let id = self.walk_excluded[i];
+            if self.excluded[..self.excluded_len].contains(&id) {
+                continue;
+            }
+            if let Some(m) = self.stick_end_margin(structure, points, id) {
+                if key(m) < best.0 {
+                    best = (key(m), Some(id));
+                }
+            }
+        }
+        best
+    }
+
+    /// [`Self::other`] as the admissibility walk measures it, a stick's
+    /// end by the event search (its phase difference plus the phase
+    /// tolerance): what a sweep sees, whose sign says where the motion
+    /// stops existing. Its zeros, not its magnitude, locate a
+    /// codimension-two end.
+    pub fn other_event(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> (f64, Option<ConditionId>) {
+        let (Condition::Margin { .. } | Condition::Eigen(_), Some(structure)) =
+            (self.condition, &self.structure)
+        else {
+            return self.other(p, points);
+        };
+        if self.sim.set_params(*p).is_err() {
+            return (f64::NEG_INFINITY, None);
+        }
+        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+        match admissible::worst_margin_except(
+            &self.sim,
+            structure,
+            points,
+            &self.excluded[..self.excluded_len],
+        ) {
+            Some(w) => (key(w.margin), Some((w.kind, w.segment, w.boundary))),
             None => (f64::INFINITY, None),
         }
+    }
+
+    /// A second evaluator of the same motion for condition `id` (a margin
+    /// that vanishes with this one at a codimension-two point).
+    pub fn companion(&self, id: ConditionId) -> Self {
+        let mut e = self.clone();
+        e.condition = Condition::Margin {
+            kind: id.0,
+            segment: id.1,
+            boundary: id.2,
+        };
+        e
     }
 }
 

@@ -25,7 +25,9 @@
 //!   for a margin curve every other admissibility condition but those that
 //!   vanish with its own at the start; for an eigenvalue curve every
 //!   condition, and a Neimark–Sacker pair turning real, named `Fold` for a
-//!   1:1 and `PeriodDoubling` for a 1:2 resonance), at the corrector's
+//!   1:1 and `PeriodDoubling` for a 1:2 resonance; a stick's end watched
+//!   by its smooth margin; where the curve's system turns singular at the
+//!   point, solved there with both conditions), at the corrector's
 //!   failure at the smallest step, or at the point limit. Along a margin
 //!   curve the sign changes of `det(I − DP)` and `det(I + DP)` are located
 //!   as [`Special`] points (a fold or period-doubling curve met).

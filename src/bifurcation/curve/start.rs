@@ -286,10 +286,10 @@ pub fn trace<M: Model>(
     let first = tracer
         .examine(x.clone(), t.clone())
         .map_err(CurveError::Start)?;
-    if first.other.is_nan() || first.other <= 0.0 {
+    if first.other_event.is_nan() || first.other_event <= 0.0 {
         return Err(CurveError::Start(format!(
             "another condition fails at the start ({:?}, margin {:e})",
-            first.worst, first.other
+            first.worst_event, first.other_event
         )));
     }
     let p = tracer.sys.params(&x);

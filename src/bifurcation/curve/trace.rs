@@ -11,14 +11,22 @@
 //! an arrival is tangential, and its eigenvalues are noise); it grows by 1.5 after an easy
 //! correction. Codimension-two points and special points are located by
 //! regula falsi (Illinois) in arclength, each trial a corrected point, until
-//! the bracket is below `location_tolerance` in both parameters.
+//! the bracket is below `location_tolerance` in both parameters. Where the
+//! curve's system turns singular at a codimension-two point (an arrival
+//! before a stick turning tangential leaves the stick's start free along
+//! the stick to first order: the curves of a period-adding cascade's
+//! grazings meeting its passable onsets) the trials fail short of it, and
+//! the point is solved directly with both conditions
+//! ([`Extended::correct_pair`]): from the last good trial, or from the last
+//! point where the corrector fails at the smallest step as the other
+//! margin falls towards zero.
 
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::detect;
 use crate::bifurcation::TransitionKind;
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::ViolationKind;
+use crate::orbit::admissible::{ConditionId, ViolationKind, SAME_EVENT};
 use crate::orbit::periodic::monodromy;
 use crate::orbit::stability::Stability;
 
@@ -31,9 +39,14 @@ use crate::bifurcation::locate::regula_falsi;
 pub(super) struct Sample {
     pub x: Vec<f64>,
     pub t: Vec<f64>,
-    /// The smallest margin of the conditions that must keep holding.
+    /// The smallest margin of the conditions that must keep holding (a
+    /// stick's end by its smooth margin), and which.
     pub other: f64,
-    pub worst: Option<(ViolationKind, Option<usize>)>,
+    pub worst: Option<ConditionId>,
+    /// The same with a stick's end by the event search: where it turns
+    /// non-positive a codimension-two end is located.
+    pub other_event: f64,
+    pub worst_event: Option<ConditionId>,
     /// `det(I − DP)`, `det(I + DP)` (NaN without `DP`).
     pub plus: f64,
     pub minus: f64,
@@ -72,6 +85,16 @@ const NEWTON_ITERATIONS: usize = 12;
 /// end ([`Tracer::vanishing_other`]).
 const CODIM2_REACH: f64 = 16.0;
 
+/// How far beyond the linear extrapolation of the vanishing other margin
+/// a codimension-two point solved directly may lie
+/// ([`Tracer::vanishing_other`]).
+const PAIR_REACH: f64 = 4.0;
+
+/// Newton iterations at most for a codimension-two point solved directly
+/// ([`Extended::correct_pair`] stops earlier once its residuals stall at
+/// rounding).
+const PAIR_ITERATIONS: usize = 64;
+
 impl<M: Model> Tracer<'_, M> {
     /// Everything watched at a corrected point `x` with tangent `t`.
     pub fn examine(&mut self, x: Vec<f64>, t: Vec<f64>) -> Result<Sample, String> {
@@ -86,6 +109,7 @@ impl<M: Model> Tracer<'_, M> {
             None
         };
         let (other, worst) = self.sys.eval.other(&p, &pts);
+        let (other_event, worst_event) = self.sys.eval.other_event(&p, &pts);
         let (plus, minus, disc) = dp.map_or((f64::NAN, f64::NAN, f64::NAN), |d| {
             let (tr, det) = (d.trace(), d.determinant());
             (1.0 - tr + det, 1.0 + tr + det, tr * tr - 4.0 * det)
@@ -95,6 +119,8 @@ impl<M: Model> Tracer<'_, M> {
             t,
             other,
             worst,
+            other_event,
+            worst_event,
             plus,
             minus,
             disc,
@@ -271,16 +297,44 @@ impl<M: Model> Tracer<'_, M> {
         // The pair of a Neimark–Sacker curve turns real: a 1:1 or 1:2 resonance.
         let turns_real =
             ns && prev.disc < 0.0 && cand.disc.partial_cmp(&0.0) != Some(std::cmp::Ordering::Less);
-        let lost = cand.other.is_nan() || cand.other <= 0.0;
+        let lost = cand.other_event.is_nan() || cand.other_event <= 0.0;
         if lost {
-            let (good, bad) = self.locate(prev, s_c, cand.other, |s| s.other);
+            let (good, bad) = self.locate(prev, s_c, cand.other_event, |s| s.other_event);
+            // Named by the smooth margins (the event search's margin of a
+            // stick's end is its phase tolerance wherever the stick ends as
+            // claimed: the smallest, but not what vanishes).
             let (kind, boundary) = good
                 .worst
+                .or(good.worst_event)
                 .or(bad.as_ref().and_then(|b| b.worst))
                 .or(cand.worst)
-                .map_or((TransitionKind::Grazing, None), |(k, b)| {
+                .map_or((TransitionKind::Grazing, None), |(k, _, b)| {
                     (transition_kind(k), b)
                 });
+            // Where the corrector fails near the point (the curve's system
+            // turning singular there, as where an arrival before a stick
+            // turns tangential) the bracket closes on failed trials, or on
+            // a candidate on the far root of that arrival's equation: solve
+            // the point directly. Where the last good trial is that point
+            // already, to the location tolerance, it stays the end.
+            let tol = self.opts.location_tolerance;
+            let n = good.x.len();
+            let good = if good.other.is_nan() || good.other <= 0.0 {
+                good
+            } else {
+                // Within a few of the step's lengths in the plane (no
+                // bracket: the candidate may lie on another root).
+                let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);
+                match self.pair_point(&good, bound) {
+                    Some(at)
+                        if (at.x[n - 2] - good.x[n - 2]).abs() > tol
+                            || (at.x[n - 1] - good.x[n - 1]).abs() > tol =>
+                    {
+                        at
+                    }
+                    _ => good,
+                }
+            };
             let reason = CurveEndReason::Codim2 { kind, boundary };
             if !(turns_real && good.disc >= 0.0) {
                 return Some((good, reason));
@@ -314,15 +368,27 @@ impl<M: Model> Tracer<'_, M> {
 
     /// Where the corrector fails even at the smallest step, whether the
     /// curve has run into a codimension-two point it cannot step past: the
-    /// smallest other margin falls towards zero along the last steps and
-    /// would reach it within [`CODIM2_REACH`] smallest steps beyond `prev`.
-    /// There the curve's own condition stops existing as the other one
-    /// vanishes (a grazing extremum that leaves the segment through its
-    /// arrival as that arrival turns tangential: no extremum, no grazing
-    /// margin, beyond), so no candidate with the other margin `<= 0` is
-    /// ever accepted for [`Self::codim2`] to locate. `None`: a plain
-    /// failure.
-    fn vanishing_other(&self, points: &[Sample], prev: &Sample) -> Option<CurveEndReason> {
+    /// smallest other margin falls towards zero along the last steps. There
+    /// the curve's own system may turn singular as the other condition
+    /// vanishes (an arrival before a stick turning tangential leaves the
+    /// stick's start free along the stick to first order), or its own
+    /// condition stop existing (a grazing extremum that leaves the segment
+    /// through its arrival as that arrival turns tangential: no extremum,
+    /// no grazing margin, beyond), so no candidate with the other margin
+    /// `<= 0` is ever accepted for [`Self::codim2`] to locate.
+    ///
+    /// The point is solved where both conditions vanish
+    /// ([`Self::pair_point`]), if that converges ahead of `prev`, in the
+    /// plane within [`PAIR_REACH`] times the linear extrapolation of the
+    /// margin along the last step (plus [`CODIM2_REACH`] smallest steps);
+    /// otherwise `prev` is the end if that extrapolation (in the scaled
+    /// metric) reaches zero within [`CODIM2_REACH`] smallest steps. `None`:
+    /// a plain failure.
+    fn vanishing_other(
+        &mut self,
+        points: &[Sample],
+        prev: &Sample,
+    ) -> Option<(CurveEndReason, Sample)> {
         let before = points.len().checked_sub(2).map(|i| &points[i])?;
         let (o0, o1) = (before.other, prev.other);
         if !(o0.is_finite() && o1.is_finite() && o1 >= 0.0 && o1 < o0) {
@@ -331,15 +397,69 @@ impl<M: Model> Tracer<'_, M> {
         let step = self.sys.distance(&prev.x, &before.x);
         // Linear extrapolation of the margin along the last step.
         let reach = o1 * step / (o0 - o1);
-        if reach.is_nan() || reach > CODIM2_REACH * self.opts.min_step {
+        if reach.is_nan() {
             return None;
         }
+        // The same in the plane alone.
+        let reach_plane = o1 * self.plane_distance(&prev.x, &before.x) / (o0 - o1);
         let (kind, boundary) = prev
             .worst
-            .map_or((TransitionKind::Grazing, None), |(k, b)| {
+            .map_or((TransitionKind::Grazing, None), |(k, _, b)| {
                 (transition_kind(k), b)
             });
-        Some(CurveEndReason::Codim2 { kind, boundary })
+        let reason = CurveEndReason::Codim2 { kind, boundary };
+        let bound = PAIR_REACH * reach_plane + CODIM2_REACH * self.opts.min_step;
+        if let Some(at) = self.pair_point(prev, bound) {
+            return Some((reason, at));
+        }
+        if reach > CODIM2_REACH * self.opts.min_step {
+            return None;
+        }
+        Some((reason, prev.clone()))
+    }
+
+    /// The point where the curve's condition and the smallest other
+    /// margin at `prev` (a margin of the motion) vanish together, solved
+    /// from `prev` with both parameters free
+    /// ([`Extended::correct_pair`]), if it lies ahead of `prev`, within
+    /// `bound` of it in the plane (each parameter over its span), in the
+    /// box, and every other condition holds there (to [`SAME_EVENT`]: the
+    /// second condition and those that vanish with it are zero there up to
+    /// rounding; a solution on the far root of another arrival's equation
+    /// is refused).
+    fn pair_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
+        let id = prev.worst?;
+        if !matches!(self.sys.eval.condition, Condition::Margin { .. })
+            || self.sys.eval.structure.is_none()
+            || id.0 == ViolationKind::Other
+        {
+            return None;
+        }
+        self.sys.pair = Some(self.sys.eval.companion(id));
+        let mut x = prev.x.clone();
+        let done = self
+            .sys
+            .correct_pair(&mut x, self.opts.tolerance, PAIR_ITERATIONS);
+        self.sys.pair = None;
+        if !matches!(done, Correction::Converged { .. }) || self.out_of_box(&x) {
+            return None;
+        }
+        let ahead = self.sys.dot_diff(&prev.t, &x, &prev.x);
+        let far = self.plane_distance(&x, &prev.x);
+        if !(ahead > 0.0 && far <= bound) {
+            return None;
+        }
+        self.examine(x, prev.t.clone())
+            .ok()
+            .filter(|s| s.other >= -SAME_EVENT)
+    }
+
+    /// The distance of `x` and `y` in the parameter plane alone (each
+    /// parameter over its range's span).
+    fn plane_distance(&self, x: &[f64], y: &[f64]) -> f64 {
+        let n = x.len();
+        let spans = self.sys.spans();
+        ((x[n - 2] - y[n - 2]) / spans[0]).hypot((x[n - 1] - y[n - 1]) / spans[1])
     }
 
     fn out_of_box(&self, x: &[f64]) -> bool {
@@ -434,19 +554,32 @@ impl<M: Model> Tracer<'_, M> {
                     last_jump = None;
                     c
                 }
-                Err(_) if ds > opts.min_step => {
+                Err(ref e) if ds > opts.min_step => {
                     ds = (0.5 * ds).max(opts.min_step);
                     continue;
                 }
                 Err(why) => {
-                    let reason = match self.vanishing_other(&points, &prev) {
-                        Some(reason) => reason,
-                        None => CurveEndReason::NewtonFailure(why),
+                    let end = match self.vanishing_other(&points, &prev) {
+                        Some((reason, at)) => {
+                            let s_c = self.sys.dot_diff(&prev.t, &at.x, &prev.x);
+                            if s_c > 0.0 {
+                                for (sp, kind) in self.specials(&prev, &at, s_c) {
+                                    special.push(Found {
+                                        index: points.len() - 1,
+                                        kind,
+                                        at: sp,
+                                    });
+                                }
+                                points.push(at.clone());
+                            }
+                            (reason, at)
+                        }
+                        None => (CurveEndReason::NewtonFailure(why), prev),
                     };
                     return Run {
                         points,
                         special,
-                        end: Some((reason, prev)),
+                        end: Some(end),
                     };
                 }
             };
