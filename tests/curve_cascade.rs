@@ -267,13 +267,17 @@ fn every_end_is_the_box_edge_or_a_codim2_point() {
             t.curve.points.len()
         );
     }
-    // The grazing curves end where their stick onset turns into a pass.
+    // The passable-onset curve ends where the grazing curves do. Near the
+    // cascade's accumulation the stick onsets of the repeated blocks
+    // (segments 13 and 17 of the ^6 motion) vanish within 2e-10 in Q0 of
+    // each other and of the grazing: the end is named by whichever the
+    // corrector met first, the grazing or the next block's onset.
     let onset = far_end(&curves()[2].curve);
     assert!(
         matches!(
             onset.reason,
             CurveEndReason::Codim2 {
-                kind: TransitionKind::Grazing,
+                kind: TransitionKind::Grazing | TransitionKind::PassableOnset,
                 boundary: Some(SIGMA1)
             }
         ),
@@ -348,10 +352,18 @@ fn the_codim2_end_is_a_grazing_and_a_passable_onset() {
             onset.margin,
             onset.segment
         );
-        // Nothing else fails there.
+        // Nothing else fails there. The stick onsets of the repeated
+        // blocks vanish together with it (within 2e-10 in Q0), and their
+        // margins, at arrivals all but tangential, are so steep (about 1e4
+        // per unit of Q0) that each is -3e-6 at the other's zero: rounding
+        // in the location, not a failure.
         for c in &all {
+            let floor = match c.kind {
+                ViolationKind::StickOnset | ViolationKind::Arrival => -1e-5,
+                _ => -1e-8,
+            };
             assert!(
-                c.margin >= -1e-8 || c.margin.is_nan() && c.kind == ViolationKind::Other,
+                c.margin >= floor || c.margin.is_nan() && c.kind == ViolationKind::Other,
                 "{}: {:?} of segment {} fails at the end ({:e})",
                 t.name,
                 c.kind,

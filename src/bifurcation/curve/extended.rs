@@ -34,8 +34,11 @@ use super::condition::Evaluator;
 use super::Plane;
 
 /// A codimension-two point's equations hold when each residual is below this
-/// times its row's largest derivative ([`Extended::correct_pair`]).
-const PAIR_MERIT: f64 = 1e-12;
+/// times its row's largest derivative ([`Extended::correct_pair`]), where
+/// the iteration stalls. Measured: the `^7` cascade curve's pair with its
+/// segment 21 onset stalls at `2.7e-12`; the test's bar on a curve point's
+/// condition is `1e-10`.
+const PAIR_MERIT: f64 = 1e-11;
 
 /// The equations hold to rounding when each residual is below this times
 /// its row's largest derivative ([`Extended::correct`]). Measured: at the

@@ -85,6 +85,10 @@ const NEWTON_ITERATIONS: usize = 12;
 /// end ([`Tracer::vanishing_other`]).
 const CODIM2_REACH: f64 = 16.0;
 
+/// Over how many of the last steps the trend of a vanishing other margin
+/// is measured ([`Tracer::vanishing_other`]).
+const TREND_POINTS: usize = 12;
+
 /// How far beyond the linear extrapolation of the vanishing other margin
 /// a codimension-two point solved directly may lie
 /// ([`Tracer::vanishing_other`]).
@@ -94,6 +98,10 @@ const PAIR_REACH: f64 = 4.0;
 /// ([`Extended::correct_pair`] stops earlier once its residuals stall at
 /// rounding).
 const PAIR_ITERATIONS: usize = 64;
+
+/// How many margins at most a codimension-two point is solved with in turn
+/// ([`Tracer::pair_point`]).
+const PAIR_RESOLVES: usize = 3;
 
 impl<M: Model> Tracer<'_, M> {
     /// Everything watched at a corrected point `x` with tangent `t`.
@@ -380,7 +388,8 @@ impl<M: Model> Tracer<'_, M> {
     /// The point is solved where both conditions vanish
     /// ([`Self::pair_point`]), if that converges ahead of `prev`, in the
     /// plane within [`PAIR_REACH`] times the linear extrapolation of the
-    /// margin along the last step (plus [`CODIM2_REACH`] smallest steps);
+    /// margin along the last [`TREND_POINTS`] steps (plus [`CODIM2_REACH`]
+    /// smallest steps);
     /// otherwise `prev` is the end if that extrapolation (in the scaled
     /// metric) reaches zero within [`CODIM2_REACH`] smallest steps. `None`:
     /// a plain failure.
@@ -389,13 +398,19 @@ impl<M: Model> Tracer<'_, M> {
         points: &[Sample],
         prev: &Sample,
     ) -> Option<(CurveEndReason, Sample)> {
-        let before = points.len().checked_sub(2).map(|i| &points[i])?;
+        // The trend over the last few steps: at the smallest step the
+        // margin's rounding (a few 1e-8 on a stick onset near a tangential
+        // arrival) is as large as its fall over one step.
+        let first = points.len().checked_sub(TREND_POINTS + 1).unwrap_or(0);
+        let before = points[first..points.len().checked_sub(1)?]
+            .iter()
+            .find(|q| q.other.is_finite())?;
         let (o0, o1) = (before.other, prev.other);
         if !(o0.is_finite() && o1.is_finite() && o1 >= 0.0 && o1 < o0) {
             return None;
         }
         let step = self.sys.distance(&prev.x, &before.x);
-        // Linear extrapolation of the margin along the last step.
+        // Linear extrapolation of the margin along the last steps.
         let reach = o1 * step / (o0 - o1);
         if reach.is_nan() {
             return None;
@@ -427,8 +442,45 @@ impl<M: Model> Tracer<'_, M> {
     /// second condition and those that vanish with it are zero there up to
     /// rounding; a solution on the far root of another arrival's equation
     /// is refused).
+    ///
+    /// Where a third margin is negative there, it vanished first: the
+    /// point is solved again with that one, up to [`PAIR_RESOLVES`] times.
+    /// Where two such solutions coincide in the plane to the location
+    /// tolerance relative to each parameter's magnitude, the conditions
+    /// vanish together to the tolerance the ends are located to, and the
+    /// first along the curve is the end: two stick onsets of a
+    /// period-adding cascade vanishing together near its accumulation,
+    /// whose steep margins make each `-3e-6` at the other's point,
+    /// `1.5e-10` away in `Q0 = 46.7`.
     fn pair_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
-        let id = prev.worst?;
+        let mut id = prev.worst?;
+        let tol = self.opts.location_tolerance;
+        let n = prev.x.len();
+        let mut last: Option<Sample> = None;
+        for _ in 0..PAIR_RESOLVES {
+            let at = self.pair_point_with(prev, id, bound)?;
+            if at.other >= -SAME_EVENT {
+                return Some(at);
+            }
+            if let Some(l) = last {
+                let same = |i: usize| (l.x[i] - at.x[i]).abs() <= tol * l.x[i].abs().max(1.0);
+                if same(n - 2) && same(n - 1) {
+                    let (sl, sa) = (
+                        self.sys.dot_diff(&prev.t, &l.x, &prev.x),
+                        self.sys.dot_diff(&prev.t, &at.x, &prev.x),
+                    );
+                    return Some(if sl <= sa { l } else { at });
+                }
+            }
+            id = at.worst?;
+            last = Some(at);
+        }
+        None
+    }
+
+    /// [`Self::pair_point`] with the second condition `id`, whatever the
+    /// other margins there.
+    fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {
         if !matches!(self.sys.eval.condition, Condition::Margin { .. })
             || self.sys.eval.structure.is_none()
             || id.0 == ViolationKind::Other
@@ -449,9 +501,7 @@ impl<M: Model> Tracer<'_, M> {
         if !(ahead > 0.0 && far <= bound) {
             return None;
         }
-        self.examine(x, prev.t.clone())
-            .ok()
-            .filter(|s| s.other >= -SAME_EVENT)
+        self.examine(x, prev.t.clone()).ok()
     }
 
     /// The distance of `x` and `y` in the parameter plane alone (each
