@@ -135,7 +135,7 @@ fn text_has_a_block_per_curve() {
 /// Each bad input: status 1, `error:` naming the argument, no panic.
 #[test]
 fn bad_input_is_a_clear_error() {
-    let cases: [(&[&str], &str); 12] = [
+    let cases: [(&[&str], &str); 13] = [
         (
             &["--x", "Foo=0:1", "--y", "Q0=0:180"],
             "`Foo` is not a free parameter",
@@ -168,6 +168,10 @@ fn bad_input_is_a_clear_error() {
         (
             &["--x", "W=0.2:8", "--y", "Q0=0:180", "--at", "W=9"],
             "--at W=9",
+        ),
+        (
+            &["--x", "W=0.2:8", "--y", "Q0=0:180", "--max-mappings", "0"],
+            "must have at least 1 mapping, not 0",
         ),
     ];
     for (args, message) in cases {

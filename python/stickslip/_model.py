@@ -203,6 +203,7 @@ class Model:
         at: Optional[Any] = None,
         count: Optional[int] = None,
         spread: Optional[int] = None,
+        max_mappings: Optional[int] = None,
         **fixed: Number,
     ) -> Curves:
         """The transition curves over the box ``x × y``, each side
@@ -214,7 +215,9 @@ class Model:
         ("W", 5)]``; default: the box's middle horizontal line. ``at``: lines
         whose crossings with every curve are solved exactly, given alike.
         ``count``: grid values of each line's sweep (default 100);
-        ``spread``: extra seed lines each way (default 3)."""
+        ``spread``: extra seed lines each way (default 3);
+        ``max_mappings``: the longest motion whose transitions are traced
+        (default 24; ``--max-mappings``)."""
         data = _native.curves(
             self.name,
             _pairs(fixed),
@@ -224,6 +227,7 @@ class Model:
             _lines("at", at),
             _count("count", count, 0),
             _count("spread", spread, 0),
+            _count("max_mappings", max_mappings, 0),
         )
         return Curves(json.loads(data))
 

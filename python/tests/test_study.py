@@ -210,6 +210,21 @@ def test_curves_bad_inputs(cli, paper):
         paper.curves(**{**box, "count": 1})
     with pytest.raises(errors.ParamError):
         paper.curves(**box, d=-5)
+    with pytest.raises(errors.InputError) as e:
+        paper.curves(**box, max_mappings=0)
+    assert str(e.value) == cli.error(
+        "curves", "--x", "W=3:5", "--y", "Q0=60:80", "--count", "30", "--spread", "0", "--max-mappings", "0"
+    )
+
+
+def test_curves_max_mappings_agrees_with_the_cli(cli, paper):
+    args = ("--x", "W=3:4", "--y", "Q0=65:75", "--count", "10", "--spread", "0", "--json")
+    theirs = json.loads(ok(cli, "curves", *args, "--max-mappings", "4"))
+    few = paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0, max_mappings=4)
+    assert few.to_dict() == theirs
+    assert all(len(k["structure"].split()) <= 4 for k in theirs["curves"])
+    every = paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0)
+    assert len(every) > len(few)
 
 
 # ---------------------------------------------------------------- lyapunov

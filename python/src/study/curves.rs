@@ -46,11 +46,12 @@ impl Command for Curves {
 /// `stickslip curves --json`: the curves of the box `x × y` (each `(name,
 /// from, to)`), from the seed lines `seeds` (`(name, value)`: the sweep
 /// along the other parameter), with their crossings of the lines `at`;
-/// `count` grid values per line's sweep, `spread` extra lines each way.
+/// `count` grid values per line's sweep, `spread` extra lines each way,
+/// `max_mappings` the longest motion whose transitions are traced.
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None))]
+#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None))]
 pub fn curves(
     py: Python<'_>,
     model: &str,
@@ -61,6 +62,7 @@ pub fn curves(
     at: Vec<(String, f64)>,
     count: Option<usize>,
     spread: Option<usize>,
+    max_mappings: Option<usize>,
 ) -> PyResult<String> {
     let defaults = CurvesSettings::default();
     let cmd = Curves {
@@ -72,6 +74,7 @@ pub fn curves(
         settings: CurvesSettings {
             count: count.unwrap_or(defaults.count),
             spread: spread.unwrap_or(defaults.spread),
+            max_mappings: max_mappings.unwrap_or(defaults.max_mappings),
             ..defaults
         },
     };
