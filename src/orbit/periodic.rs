@@ -241,25 +241,45 @@ impl<M: Model> PeriodicSolver<M> {
         M::mapping(p, self.structure.steps()[k], a.x, a.phase, b.x, b.phase)
     }
 
-    /// Largest residual component over all mappings (NaN propagates).
-    pub fn residual(&self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
-        let mut r = 0.0f64;
+    /// Calls `f(k, step, x_k, φ_k, x_{k+1}, φ_{k+1})` for each mapping in
+    /// turn until it returns `false`. Mapping k ends where mapping k + 1
+    /// starts, so each phase's `sin_cos` is computed once (the last arrival
+    /// is the first point a cycle later, computed as [`Self::evaluate`]
+    /// does: the same bits as [`Model::mapping`]).
+    #[inline]
+    fn each_mapping(
+        &self,
+        points: &[SwitchingPoint],
+        mut f: impl FnMut(usize, usize, f64, Phase, f64, Phase) -> bool,
+    ) {
         let Some(first) = points.first() else {
-            return r;
+            return;
         };
+        let steps = self.structure.steps();
         let mut a = Phase::new(first.phase);
         for k in 0..points.len() {
             let next = self.next(points, k);
             let b = Phase::new(next.phase);
-            let f = M::residual_at(p, self.structure.steps()[k], points[k].x, a, next.x, b);
+            if !f(k, steps[k], points[k].x, a, next.x, b) {
+                return;
+            }
             a = b;
-            for v in f.iter() {
+        }
+    }
+
+    /// Largest residual component over all mappings (NaN propagates).
+    pub fn residual(&self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
+        let mut r = 0.0f64;
+        self.each_mapping(points, |_, step, x0, a, x1, b| {
+            for v in M::residual_at(p, step, x0, a, x1, b).iter() {
                 if v.is_nan() {
-                    return f64::NAN;
+                    r = f64::NAN;
+                    return false;
                 }
                 r = r.max(v.abs());
             }
-        }
+            true
+        });
         r
     }
 
@@ -272,15 +292,8 @@ impl<M: Model> PeriodicSolver<M> {
         out: &mut [MappingEval],
     ) -> f64 {
         let mut r = 0.0f64;
-        let steps = self.structure.steps();
-        // Mapping k ends where mapping k + 1 starts: each phase's `sin_cos`
-        // once (the last arrival is the first point a cycle later).
-        let mut a = Phase::new(points[0].phase);
-        for (k, slot) in out.iter_mut().enumerate() {
-            let next = self.next(points, k);
-            let b = Phase::new(next.phase);
-            let e = M::mapping_at(p, steps[k], points[k].x, a, next.x, b);
-            a = b;
+        self.each_mapping(points, |k, step, x0, a, x1, b| {
+            let e = M::mapping_at(p, step, x0, a, x1, b);
             for v in e.residual.iter() {
                 if v.is_nan() {
                     r = f64::NAN;
@@ -288,8 +301,9 @@ impl<M: Model> PeriodicSolver<M> {
                     r = r.max(v.abs());
                 }
             }
-            *slot = e;
-        }
+            out[k] = e;
+            true
+        });
         r
     }
 
@@ -560,5 +574,50 @@ impl<M: Model> PeriodicSolver<M> {
             segment: Some(k),
             reason: "the arrival is tangent to the boundary (grazing)",
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::paper::{Paper, Params};
+
+    /// The shared phases of [`PeriodicSolver::evaluate_all`] and
+    /// [`PeriodicSolver::residual`] give the same bits as each mapping
+    /// evaluated alone by [`Model::mapping`] (its own `sin_cos` at both
+    /// ends), at phases near 0 and far from it.
+    #[test]
+    fn shared_phases_give_the_bits_of_each_mapping_alone() {
+        let p = Params {
+            W: 5.0,
+            Q0: 70.0,
+            ..Params::default()
+        };
+        let structure =
+            Structure::parse(Paper::INFO, "3_31 0_11 3_13 4_33 3_33 4_33", 2).expect("a structure");
+        let solver = PeriodicSolver::<Paper>::new(structure);
+        for origin in [0.0, 1.0e3, -37.5] {
+            let points: Vec<SwitchingPoint> = (0..6)
+                .map(|k| SwitchingPoint {
+                    phase: origin + 0.9 * k as f64 + 0.1 * (k * k) as f64,
+                    x: 0.3 * (k as f64 - 2.5),
+                })
+                .collect();
+            let mut out = vec![MappingEval::NAN; points.len()];
+            let r = solver.evaluate_all(&p, &points, &mut out);
+            let mut alone_max = 0.0f64;
+            for (k, e) in out.iter().enumerate() {
+                let alone = solver.evaluate(&p, &points, k);
+                assert_eq!(
+                    format!("{e:?}"),
+                    format!("{alone:?}"),
+                    "mapping {k} at {origin}"
+                );
+                alone_max = alone.residual.iter().fold(alone_max, |m, v| m.max(v.abs()));
+            }
+            assert!(alone_max > 0.0, "the points are no motion: a residual");
+            assert_eq!(r.to_bits(), alone_max.to_bits(), "at {origin}");
+            assert_eq!(solver.residual(&p, &points).to_bits(), alone_max.to_bits());
+        }
     }
 }
