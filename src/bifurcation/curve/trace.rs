@@ -401,7 +401,7 @@ impl<M: Model> Tracer<'_, M> {
         // The trend over the last few steps: at the smallest step the
         // margin's rounding (a few 1e-8 on a stick onset near a tangential
         // arrival) is as large as its fall over one step.
-        let first = points.len().checked_sub(TREND_POINTS + 1).unwrap_or(0);
+        let first = points.len().saturating_sub(TREND_POINTS + 1);
         let before = points[first..points.len().checked_sub(1)?]
             .iter()
             .find(|q| q.other.is_finite())?;
