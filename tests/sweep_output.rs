@@ -757,3 +757,67 @@ fn no_unstable_through_the_cli_drops_every_unstable_motion() {
     assert!(thin(&[], "cli_all.svg") > 0);
     assert_eq!(thin(&["--no-unstable"], "cli_stable.svg"), 0);
 }
+
+/// A branch whose end point, located at a grazing, is the only point with
+/// |λ| ≥ 1 (at a grazing arrival `DP` diverges): no zero-length unstable
+/// stretch, the stable one reaches the end. At a parameter bound the same
+/// point is a stretch of its own, and a longer unstable stretch before a
+/// grazing end stays one.
+#[test]
+fn a_grazing_end_is_no_unstable_stretch_of_its_own() {
+    let eig = |m: f64| vec![[m, 0.0], [0.1, 0.0]];
+    let branch = |moduli: &[f64], ends: Vec<BranchEndSummary>| BranchSummary {
+        id: 0,
+        structure: B.into(),
+        n: 1,
+        points: moduli
+            .iter()
+            .enumerate()
+            .map(|(i, &m)| sample(1.0 + 0.1 * i as f64, vec![(0.1 * i as f64, 0.2)], eig(m)))
+            .collect(),
+        ends,
+    };
+    let brief = |b: &BranchSummary| -> Vec<(bool, usize, usize, f64, f64)> {
+        sweep_table::runs(b, &[])
+            .iter()
+            .map(|r| (r.stable, r.first, r.last, r.from, r.to))
+            .collect()
+    };
+    let last = 1.0 + 0.1 * 4.0;
+    // Grazing at both ends, the end points alone unstable.
+    let both = branch(
+        &[1.0, 0.5, 0.6, 0.7, 1.0],
+        vec![
+            end(1.0, "grazing", Some("Sigma3"), None),
+            end(last, "stick_onset", Some("Sigma1"), None),
+        ],
+    );
+    assert_eq!(brief(&both), vec![(true, 0, 4, 1.0, last)]);
+    // A parameter bound: the unstable end point is its own stretch.
+    let bound = branch(
+        &[0.5, 0.6, 0.7, 0.8, 1.0],
+        vec![
+            end(1.0, "grazing", Some("Sigma3"), None),
+            end(last, "parameter_bound", None, None),
+        ],
+    );
+    assert_eq!(
+        brief(&bound),
+        vec![
+            (true, 0, 3, 1.0, 1.0 + 0.1 * 3.0),
+            (false, 4, 4, last, last)
+        ]
+    );
+    // Two unstable points before a grazing end: an unstable stretch.
+    let longer = branch(
+        &[0.5, 0.6, 0.7, 1.2, 1.3],
+        vec![
+            end(1.0, "parameter_bound", None, None),
+            end(last, "grazing", Some("Sigma1"), None),
+        ],
+    );
+    assert_eq!(
+        brief(&longer),
+        vec![(true, 0, 2, 1.0, 1.2), (false, 3, 4, 1.0 + 0.1 * 3.0, last)]
+    );
+}

@@ -54,6 +54,7 @@ pub fn runs(branch: &BranchSummary, bifurcations: &[BifurcationSummary]) -> Vec<
             }),
         }
     }
+    absorb_transition_ends(branch, &mut out);
     for k in 1..out.len() {
         let (a, b) = (&pts[out[k - 1].last], &pts[out[k].first]);
         let step = apart(a.value, a.start_x, a.start_wt, b);
@@ -77,6 +78,45 @@ pub fn runs(branch: &BranchSummary, bifurcations: &[BifurcationSummary]) -> Vec<
         }
     }
     out
+}
+
+/// The non-smooth transitions a branch can end at.
+const TRANSITION_ENDS: [&str; 4] = [
+    "grazing",
+    "stick_onset",
+    "stick_vanishing",
+    "passable_onset",
+];
+
+/// A run made of the branch's end point alone, located at a non-smooth
+/// transition, joins the run next to it. At a grazing arrival `DP`
+/// diverges, so its eigenvalues leave the unit disc at the end point itself
+/// (`P_{3_33 4_33}` at its grazing of Σ3, Q0 = 100: |λ| = 0.63 at 1e-12
+/// before the end, 1 at it): a stretch of zero length that is the
+/// transition's, not an unstable stretch of the motion. The branch's
+/// points keep their own eigenvalues.
+fn absorb_transition_ends(branch: &BranchSummary, out: &mut Vec<Run>) {
+    let pts = &branch.points;
+    let at_transition = |i: usize| {
+        branch
+            .ends
+            .iter()
+            .any(|e| TRANSITION_ENDS.contains(&e.reason.as_str()) && e.value == pts[i].value)
+    };
+    if out.len() >= 2 {
+        let last = out.len() - 1;
+        if out[last].first == out[last].last && at_transition(out[last].last) {
+            let r = out.pop().expect("two runs");
+            let before = out.last_mut().expect("two runs");
+            before.last = r.last;
+            before.to = r.to;
+        }
+    }
+    if out.len() >= 2 && out[0].first == out[0].last && at_transition(0) {
+        let r = out.remove(0);
+        out[0].first = r.first;
+        out[0].from = r.from;
+    }
 }
 
 /// How far the motion at (`value`, `x`, `phase`) is from the point `p`: the
