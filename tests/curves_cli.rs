@@ -252,3 +252,63 @@ fn max_mappings_limits_the_motions_traced() {
         "{few:?} against {all:?}"
     );
 }
+
+/// A scene's free parameters are the plane's axes (its parameter set holds
+/// them alone, indexed by their place among them; until stop 22 `curves`
+/// took those places for the model's and refused `W` of every scene). Its
+/// curves are the model's
+/// curves of the same motions: each scene curve has a curve of the full
+/// model with the same kind, boundary and structure whose ends agree to
+/// 1e-8. A fixed parameter of the scene is no axis.
+#[test]
+fn a_scene_traces_the_curves_of_its_motions() {
+    let box_of = |model: &str| {
+        let o = run(&[
+            "curves", "--model", model, "--x", "W=3:4", "--y", "Q0=65:75", "--count", "10",
+            "--spread", "0", "--json",
+        ]);
+        assert!(o.status.success(), "{model}: {}", text(&o.stderr));
+        serde_json::from_slice::<Value>(&o.stdout).expect("JSON")
+    };
+    let (scene, full) = (box_of("paper::reference"), box_of("paper"));
+    let curves = |v: &Value| v["curves"].as_array().expect("curves").clone();
+    let (scene, full) = (curves(&scene), curves(&full));
+    assert!(!scene.is_empty(), "no curve");
+    let ends = |c: &Value| -> Vec<(f64, f64)> {
+        let mut e: Vec<(f64, f64)> = ["from", "to"]
+            .iter()
+            .filter(|k| !c[**k].is_null())
+            .map(|k| (c[*k]["W"].as_f64().unwrap(), c[*k]["Q0"].as_f64().unwrap()))
+            .collect();
+        e.sort_by(|a, b| a.0.total_cmp(&b.0));
+        e
+    };
+    for c in &scene {
+        let same = full.iter().any(|f| {
+            f["kind"] == c["kind"]
+                && f["boundary"] == c["boundary"]
+                && f["structure"] == c["structure"]
+                && ends(f).len() == ends(c).len()
+                && ends(f)
+                    .iter()
+                    .zip(ends(c))
+                    .all(|(a, b)| (a.0 - b.0).abs() <= 1e-8 && (a.1 - b.1).abs() <= 1e-8)
+        });
+        assert!(same, "the scene's {c} is no curve of the model");
+    }
+    let o = run(&[
+        "curves",
+        "--model",
+        "paper::reference",
+        "--x",
+        "d=0.1:0.2",
+        "--y",
+        "Q0=65:75",
+    ]);
+    let err = text(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("`d` is not a free parameter of paper::reference; free: Q0, W"),
+        "{err}"
+    );
+}

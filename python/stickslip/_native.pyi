@@ -81,6 +81,7 @@ def curves(
     at: Pairs = ...,
     count: Optional[int] = None,
     spread: Optional[int] = None,
+    max_mappings: Optional[int] = None,
 ) -> str: ...
 def lyapunov(
     model: str,

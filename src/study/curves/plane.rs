@@ -50,19 +50,19 @@ impl CurvesOptions {
 
     /// The checked plane of model `M` at `base`.
     pub fn plane<M: Model>(&self, base: &M::Params) -> Result<Plane, CurvesError> {
+        // The parameter set holds the free parameters alone (a scene's
+        // fixed ones are constants), indexed by their place among them.
         let index = |name: &str| {
-            <M::Params as ParamSet>::index_of(name)
-                .filter(|i| M::INFO.free.contains(i))
-                .ok_or_else(|| CurvesError::UnknownParam {
-                    name: name.to_string(),
-                    model: M::INFO.name.to_string(),
-                    free: M::INFO
-                        .free
-                        .iter()
-                        .map(|&i| M::INFO.params[i].name)
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                })
+            <M::Params as ParamSet>::index_of(name).ok_or_else(|| CurvesError::UnknownParam {
+                name: name.to_string(),
+                model: M::INFO.name.to_string(),
+                free: M::INFO
+                    .free
+                    .iter()
+                    .map(|&i| M::INFO.params[i].name)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            })
         };
         let (x, y) = (index(&self.x.0)?, index(&self.y.0)?);
         if x == y {
