@@ -44,7 +44,10 @@ fn phase_tol(phase: f64) -> f64 {
 }
 
 /// The interior margin by sampling (`n` samples; `ends`: the segment's ends
-/// count for the boundaries it does not touch).
+/// count for the boundaries it does not touch; `flat`: the departure has no
+/// acceleration, so a zero of it within the phase tolerance of the start is
+/// the departure itself, not an extremum).
+#[allow(clippy::too_many_arguments)]
 fn sampled_interior_margin<M: Model>(
     sim: &Simulator<M>,
     seg: &Segment,
@@ -53,6 +56,7 @@ fn sampled_interior_margin<M: Model>(
     j: usize,
     n: usize,
     ends: bool,
+    flat: bool,
 ) -> Option<(f64, usize)> {
     let dom = M::INFO.domains[j];
     let p = sim.params();
@@ -104,7 +108,9 @@ fn sampled_interior_margin<M: Model>(
                 }
                 t = next;
             }
-            consider(sim.state_at(seg, t).1, true);
+            if !(flat && t - seg.phase <= phase_tol(end)) {
+                consider(sim.state_at(seg, t).1, true);
+            }
         }
         if i < n {
             consider(sim.state_at(seg, phi).1, false);
@@ -243,11 +249,14 @@ fn sampled_conditions<M: Model>(
                 } else {
                     -1.0
                 };
-                let dep = if into * acc0 == 0.0 {
-                    into * rate0
-                } else {
-                    into * acc0
-                };
+                // Zero up to rounding (1e-12 of the acceleration's terms)
+                // is zero: the rate decides (a departure after a stick with
+                // as = ak).
+                let (osc, co) = (sim.oscillator(), sim.coefficients(j));
+                let scale =
+                    osc.amplitude.abs() + co.b.abs() + (co.c * a.x).abs() + (co.two_d * va).abs();
+                let flat = (into * acc0).abs() <= 1e-12 * scale;
+                let dep = if flat { into * rate0 } else { into * acc0 };
                 add(
                     ViolationKind::Departure,
                     Some(mi.from),
@@ -265,8 +274,9 @@ fn sampled_conditions<M: Model>(
                     location: Location::Domain(j),
                     search_from: a.phase,
                 };
-                let interior =
-                    || sampled_interior_margin(sim, &seg, b.phase, [mi.from, mi.to], j, n, ends);
+                let interior = || {
+                    sampled_interior_margin(sim, &seg, b.phase, [mi.from, mi.to], j, n, ends, flat)
+                };
                 match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
                     Ok(Some((e, _)))
                         if e.phase < b.phase - phase_tol(b.phase) || e.boundary != mi.to =>
