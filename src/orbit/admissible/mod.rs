@@ -166,7 +166,8 @@ impl FlowCheck {
 /// The interior margin of the flow of `seg` to phase `b` on boundary `to`
 /// (collected by `margin`, which knows the domain and the boundaries the
 /// segment touches), and whether its arrival is certain (`dep`: the
-/// departure's acceleration into the domain).
+/// departure's acceleration into the domain, exactly 0 where it is zero to
+/// rounding, [`FLAT_DEPARTURE`]).
 fn check_flow<M: Model>(
     sim: &Simulator<M>,
     flow: &SegmentFlow,
@@ -206,15 +207,12 @@ fn check_flow<M: Model>(
     // departure itself, on the boundary it leaves, not an interior contact.
     // Counted, its margin is zero up to rounding wherever the motion lives,
     // and its sign flickers from point to point.
-    let start_scale =
-        osc.amplitude.abs() + co.b.abs() + (co.c * seg.x).abs() + (co.two_d * seg.v).abs();
-    let flat_departure = dep.abs() <= FLAT_DEPARTURE * start_scale;
     flow.acceleration_zeros(seg.phase, b + tol, enough, |z| {
         if z.phase > b {
             clear = false;
             return;
         }
-        if flat_departure && z.phase - seg.phase <= tol {
+        if dep == 0.0 && z.phase - seg.phase <= tol {
             return;
         }
         margin.extremum(z.state.v);
@@ -456,7 +454,9 @@ fn walk<M: Model>(
                     + sim.coefficients(j).b.abs()
                     + (sim.coefficients(j).c * a.x).abs()
                     + (sim.coefficients(j).two_d * va).abs();
-                let dep = if (into * acc0).abs() <= FLAT_DEPARTURE * acc_scale {
+                let flat_departure = (into * acc0).abs() <= FLAT_DEPARTURE * acc_scale;
+                let acc_into = if flat_departure { 0.0 } else { into * acc0 };
+                let dep = if flat_departure {
                     into * rate0
                 } else {
                     into * acc0
@@ -480,7 +480,7 @@ fn walk<M: Model>(
                         |f| {
                             let ends = [mi.from, mi.to];
                             let margin = InteriorMargin::new(sim, ends, j, signs_only);
-                            check_flow(sim, &f, &seg, mi.to, b.phase, into * acc0, margin)
+                            check_flow(sim, &f, &seg, mi.to, b.phase, acc_into, margin)
                         },
                     );
                 // A flow the closed form cannot follow has no margin.
