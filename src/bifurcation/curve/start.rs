@@ -415,13 +415,20 @@ pub fn condition_at_transition<M: Model>(
             .unwrap_or(f64::NAN);
     }
     // An interior margin to a boundary that the segment starts and ends
-    // on measures an excursion that shrinks to nothing: it vanishes
-    // quadratically (no simple zero), with the arrival's that vanishes
-    // linearly.
+    // on, where the segment's arrival turns tangential with it, measures
+    // an excursion that shrinks to nothing: it vanishes quadratically (no
+    // simple zero), with the arrival's that vanishes linearly. Where the
+    // arrival stays transversal, it is a second extremum of the excursion
+    // touching the boundary (the segment splits in three): a simple zero.
+    let transversal = |segment: usize| {
+        all.iter().any(|a| {
+            a.kind == ViolationKind::Arrival && a.segment == segment && a.margin > VANISHING
+        })
+    };
     let degenerate = |c: &admissible::Violation| {
         c.kind == ViolationKind::Interior && {
             let mi = info.mappings[structure.steps()[c.segment]];
-            c.boundary == Some(mi.from) && c.boundary == Some(mi.to)
+            c.boundary == Some(mi.from) && c.boundary == Some(mi.to) && !transversal(c.segment)
         }
     };
     let usable = |c: &&admissible::Violation| {

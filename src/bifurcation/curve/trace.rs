@@ -94,6 +94,10 @@ const TREND_POINTS: usize = 12;
 /// ([`Tracer::vanishing_other`]).
 const PAIR_REACH: f64 = 4.0;
 
+/// Over how many accepted steps a curve that makes no headway has stalled
+/// ([`Tracer::stalled`]).
+const STALL_POINTS: usize = 48;
+
 /// Newton iterations at most for a codimension-two point solved directly
 /// ([`Extended::correct_pair`] stops earlier once its residuals stall at
 /// rounding).
@@ -433,6 +437,61 @@ impl<M: Model> Tracer<'_, M> {
         Some((reason, prev.clone()))
     }
 
+    /// The end of a curve that cannot go on from `prev` (the last of
+    /// `points`) for the reason `why`: a codimension-two point ahead if
+    /// [`Self::vanishing_other`] finds one (added to `points`, with the
+    /// special points met on the way there), else `prev` with `why`.
+    fn stop(
+        &mut self,
+        points: &mut Vec<Sample>,
+        special: &mut Vec<Found>,
+        prev: Sample,
+        why: String,
+    ) -> (CurveEndReason, Sample) {
+        let Some((reason, at)) = self.vanishing_other(points, &prev) else {
+            return (CurveEndReason::NewtonFailure(why), prev);
+        };
+        let s_c = self.sys.dot_diff(&prev.t, &at.x, &prev.x);
+        if s_c > 0.0 {
+            for (sp, kind) in self.specials(&prev, &at, s_c) {
+                special.push(Found {
+                    index: points.len() - 1,
+                    kind,
+                    at: sp,
+                });
+            }
+            points.push(at.clone());
+        }
+        (reason, at)
+    }
+
+    /// Why the curve has stalled, if it has: the last [`STALL_POINTS`]
+    /// steps were all accepted at the smallest step only (the corrector
+    /// converges, slowly, on a system singular there), or together moved
+    /// the parameters by less than the location tolerance (the curve runs
+    /// through the switching points alone, as where an interior extremum
+    /// leaves its segment through an arrival that turns tangential). Either
+    /// way it would crawl on to the point limit; it ends there, at a
+    /// codimension-two point if one is solved ([`Self::vanishing_other`]).
+    fn stalled(&self, points: &[Sample], at_min: usize) -> Option<String> {
+        if at_min >= STALL_POINTS {
+            return Some(format!(
+                "the corrector converges only at the smallest step ({:.0e}) over {STALL_POINTS} steps: the system is singular there",
+                self.opts.min_step
+            ));
+        }
+        let n = points.len().checked_sub(STALL_POINTS + 1)?;
+        let (a, b) = (&points[n].x, &points[points.len() - 1].x);
+        let k = a.len();
+        let tol = self.opts.location_tolerance;
+        let moved = (a[k - 2] - b[k - 2]).abs().max((a[k - 1] - b[k - 1]).abs());
+        (moved < tol).then(|| {
+            format!(
+                "the curve stalls: its last {STALL_POINTS} steps move the parameters by {moved:.1e}, less than the location tolerance {tol:.0e}"
+            )
+        })
+    }
+
     /// The point where the curve's condition and the smallest other
     /// margin at `prev` (a margin of the motion) vanish together, solved
     /// from `prev` with both parameters free
@@ -544,6 +603,8 @@ impl<M: Model> Tracer<'_, M> {
         let mut last_jump: Option<f64> = None;
         // Whether `DP` has shown itself singular along this curve.
         let mut erratic = false;
+        // How many steps in a row were accepted at the smallest step.
+        let mut at_min = 0;
         if self.on_box_edge_leaving(&prev) {
             return Run {
                 points,
@@ -609,23 +670,7 @@ impl<M: Model> Tracer<'_, M> {
                     continue;
                 }
                 Err(why) => {
-                    let end = match self.vanishing_other(&points, &prev) {
-                        Some((reason, at)) => {
-                            let s_c = self.sys.dot_diff(&prev.t, &at.x, &prev.x);
-                            if s_c > 0.0 {
-                                for (sp, kind) in self.specials(&prev, &at, s_c) {
-                                    special.push(Found {
-                                        index: points.len() - 1,
-                                        kind,
-                                        at: sp,
-                                    });
-                                }
-                                points.push(at.clone());
-                            }
-                            (reason, at)
-                        }
-                        None => (CurveEndReason::NewtonFailure(why), prev),
-                    };
+                    let end = self.stop(&mut points, &mut special, prev, why);
                     return Run {
                         points,
                         special,
@@ -700,6 +745,19 @@ impl<M: Model> Tracer<'_, M> {
                     points,
                     special,
                     end: None,
+                };
+            }
+            if ds <= opts.min_step {
+                at_min += 1;
+            } else {
+                at_min = 0;
+            }
+            if let Some(why) = self.stalled(&points, at_min) {
+                let end = self.stop(&mut points, &mut special, cand, why);
+                return Run {
+                    points,
+                    special,
+                    end: Some(end),
                 };
             }
             if iterations <= 3 {

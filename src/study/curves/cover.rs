@@ -16,6 +16,7 @@
 use crate::bifurcation::curve::{crossings, trace, Curve, CurveEndReason, Line, Plane};
 use crate::model::Model;
 use crate::orbit::structure::Structure;
+use crate::study::sweep::SweepOptions;
 
 use super::codim2::{codim2_points, same_place, SAME_PLACE};
 use super::seeds::{structure_name, sweep_line, LineSweep, Start};
@@ -90,7 +91,19 @@ impl<'a, M: Model> Cover<'a, M> {
             &self.plane,
             line,
             self.settings.count,
-            self.settings.sweep,
+            // Longer motions start no curve. Their branches are followed one
+            // period doubling further (a transition past a longer branch's
+            // end may lead to a traceable motion), and no further: a
+            // cascade into chaos would follow branches of hundreds of
+            // mappings.
+            SweepOptions {
+                max_mappings: self
+                    .settings
+                    .sweep
+                    .max_mappings
+                    .or(Some(self.settings.max_mappings.saturating_mul(2))),
+                ..self.settings.sweep
+            },
         )?;
         let max = self.settings.max_mappings;
         for start in sw.starts.iter().filter(|s| traceable(s, max)) {

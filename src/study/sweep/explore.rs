@@ -209,6 +209,13 @@ impl<'a, M: Model> Explorer<'a, M> {
     }
 
     fn follow(&mut self, p: Pending) {
+        if self
+            .opts
+            .max_mappings
+            .is_some_and(|max| p.start.structure.len() > max)
+        {
+            return;
+        }
         let Ok(branch) = follow::<M>(self.base, self.index, &p.start, &self.continuation) else {
             return;
         };

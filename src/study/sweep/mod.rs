@@ -234,6 +234,12 @@ pub struct SweepOptions {
     pub every: usize,
     /// At most this many branches are followed.
     pub max_branches: usize,
+    /// Branches of motions of more mappings than this are not followed
+    /// (`None`: every one). A period-doubling cascade into chaos otherwise
+    /// follows branches of hundreds of mappings, each continuation step a
+    /// Newton step on twice that many unknowns; the motion is still named
+    /// where a simulation finds it (a transition's far side).
+    pub max_mappings: Option<usize>,
 }
 
 impl Default for SweepOptions {
@@ -248,6 +254,7 @@ impl Default for SweepOptions {
             starts: 4,
             every: 50,
             max_branches: 64,
+            max_mappings: None,
         }
     }
 }

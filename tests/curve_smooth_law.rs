@@ -1,0 +1,234 @@
+//! Curves and sweeps of a smooth law's N-piece model (`stribeck8`), where
+//! the paper model has no counterpart. Three faults found on
+//! `stickslip curves --model stribeck8 --x W=2.3:2.6 --y Q0=1:3`, which ran
+//! for more than 15 minutes and now takes about 3 s:
+//!
+//! 1. A segment in `v < Sigma7` that starts and ends on `Sigma7` with a
+//!    second extremum touching `Sigma7` (the excursion splits in three,
+//!    `8_77` → `8_77 7_77 8_77`) was taken for an excursion shrinking to
+//!    nothing, its interior margin set aside, and the curve started on the
+//!    segment's arrival margin (0.52 there): its corrector jumped to another
+//!    curve, and seven sweeps started the same wrong curve again.
+//! 2. A sweep into a period-doubling cascade followed branches of up to 512
+//!    mappings (63 s for one line); a curves run follows none longer than
+//!    twice `--max-mappings`.
+//! 3. Curves crawled to the point limit where their system turns singular.
+//!
+//! Checked independently: the transition located by following the branch
+//! (its end), the margins of `admissible::conditions` there, and the curve's
+//! exact crossing of the branch's line.
+
+use stickslip::bifurcation::curve::{
+    condition_at_transition, crossings, trace, Condition, CurveEndReason, CurveOptions, Line, Plane,
+};
+use stickslip::bifurcation::{follow, ContinuationOptions, EndReason, Start, TransitionKind};
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
+use stickslip::models::stribeck8::{self, Stribeck8};
+use stickslip::orbit::admissible::{conditions, ViolationKind};
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
+use stickslip::study::sweep::{sweep, SweepOptions};
+use stickslip::ParamSet;
+
+/// The line through the split: the sweep along W at this Q0 locates it at
+/// W = 2.525.
+const Q: f64 = 1.4253320267492484;
+
+fn params(w: f64, q: f64) -> stribeck8::Params {
+    stribeck8::Params {
+        W: w,
+        Q0: q,
+        ..stribeck8::Params::default()
+    }
+}
+
+fn plane() -> Plane {
+    Plane {
+        x: stribeck8::Params::index_of("W").unwrap(),
+        y: stribeck8::Params::index_of("Q0").unwrap(),
+        x_range: [2.45, 2.6],
+        y_range: [1.3, 1.6],
+    }
+}
+
+#[test]
+fn a_splitting_excursion_is_traced_on_its_interior_margin() {
+    let plane = plane();
+    // The period-3 motion of 16 mappings, from rest at W = 2.56.
+    let sim = Simulator::<Stribeck8>::new(params(2.56, Q), SimOptions::default()).unwrap();
+    let found = attractor::find(
+        &sim,
+        sim.start(0.0, 0.0, 0.0).unwrap(),
+        AttractorOptions {
+            max_periods: 2000,
+            ..AttractorOptions::default()
+        },
+    );
+    let Ok(Attractor::Periodic(m)) = found else {
+        panic!("from rest at W = 2.56: {found:?}");
+    };
+    assert_eq!((m.structure.len(), m.structure.periods()), (16, 3));
+    let branch = follow::<Stribeck8>(
+        &params(2.56, Q),
+        plane.x,
+        &Start {
+            structure: m.structure.clone(),
+            value: 2.56,
+            points: m.points.clone(),
+            direction: None,
+        },
+        &ContinuationOptions {
+            bounds: (plane.x_range[0], plane.x_range[1]),
+            ..ContinuationOptions::default()
+        },
+    )
+    .expect("the branch");
+    let end = branch
+        .ends
+        .iter()
+        .find(|e| {
+            matches!(
+                e.reason,
+                EndReason::Transition {
+                    kind: TransitionKind::Grazing,
+                    ..
+                }
+            )
+        })
+        .expect("the branch ends at a grazing");
+    let w = end.at.value;
+    assert!((w - 2.525).abs() < 1e-3, "the grazing at W = {w}");
+
+    // What vanishes there, by the public walk: an interior margin to the
+    // boundary its segment starts and ends on, while that segment's arrival
+    // stays transversal.
+    let p = params(w, Q);
+    let sim = Simulator::<Stribeck8>::new(p, SimOptions::default()).unwrap();
+    let all = conditions(&sim, &m.structure, &end.at.points);
+    let least = all
+        .iter()
+        .filter(|c| c.margin.is_finite())
+        .min_by(|a, b| a.margin.total_cmp(&b.margin))
+        .unwrap();
+    assert_eq!(least.kind, ViolationKind::Interior, "{least:?}");
+    assert!(least.margin.abs() < 1e-9, "{least:?}");
+    let arrival = all
+        .iter()
+        .find(|c| c.kind == ViolationKind::Arrival && c.segment == least.segment)
+        .expect("the segment's arrival");
+    assert!(arrival.margin > 0.1, "{arrival:?}");
+
+    // The curve starts on that margin, and passes through the end.
+    let condition = condition_at_transition::<Stribeck8>(
+        &p,
+        &m.structure,
+        &end.at.points,
+        TransitionKind::Grazing,
+    )
+    .expect("a condition");
+    assert_eq!(
+        condition,
+        Condition::Margin {
+            kind: ViolationKind::Interior,
+            segment: least.segment,
+            boundary: least.boundary,
+        }
+    );
+    let start = stickslip::bifurcation::curve::CurvePoint {
+        x: w,
+        y: Q,
+        points: end.at.points.clone(),
+    };
+    let opts = CurveOptions {
+        max_points: 400,
+        ..CurveOptions::default()
+    };
+    let base = params(w, Q);
+    let curve = trace::<Stribeck8>(&base, &plane, Some(&m.structure), &start, condition, &opts)
+        .expect("the curve");
+    let across = crossings::<Stribeck8>(&base, &plane, &curve, Line::Y(Q), &opts);
+    assert!(
+        across.iter().any(|c| (c.x - w).abs() < 1e-8),
+        "the curve crosses Q0 = {Q} at {:?}, not at the branch's end W = {w}",
+        across.iter().map(|c| c.x).collect::<Vec<_>>()
+    );
+    assert!(
+        curve
+            .ends
+            .iter()
+            .all(|e| !matches!(e.reason, CurveEndReason::MaxPoints)),
+        "{:?}",
+        curve.ends
+    );
+}
+
+/// A sweep with `max_mappings` follows no longer branch; the branches it
+/// follows, and their bifurcations, are those of the sweep without the cap
+/// (over a range without longer motions, every one; into the cascade, the
+/// period doubling where the first longer branch is born is still located,
+/// to the sweep's tolerance, with an eigenvalue of -1).
+#[test]
+fn a_capped_sweep_follows_no_longer_branch() {
+    let capped = SweepOptions {
+        max_mappings: Some(16),
+        ..SweepOptions::default()
+    };
+    let q = 2.5;
+    // Before the cascade: the same sweep.
+    let a = sweep::<Stribeck8>(params(2.45, q), "W", 2.45, 2.5, 12, capped).unwrap();
+    let b =
+        sweep::<Stribeck8>(params(2.45, q), "W", 2.45, 2.5, 12, SweepOptions::default()).unwrap();
+    assert_eq!(a, b);
+    // Into it: no branch longer than 16 mappings, and the doubling of the
+    // 14-mapping motion is there.
+    let c = sweep::<Stribeck8>(params(2.5, q), "W", 2.5, 2.51, 12, capped).unwrap();
+    // `P_{7_76 6_65 ...}`: one `_` per mapping, and the name's.
+    let mappings = |s: &str| s.matches('_').count() - 1;
+    for br in &c.branches {
+        assert!(mappings(&br.structure) <= 16, "{}", br.structure);
+    }
+    let pd = c
+        .bifurcations
+        .iter()
+        .find(|f| f.kind == TransitionKind::PeriodDoubling && mappings(&f.structure) == 14)
+        .expect("the period doubling of the 14-mapping motion");
+    assert!((pd.eigenvalue[0] + 1.0).abs() < 1e-6, "{pd:?}");
+    assert!(pd.born.is_empty(), "{pd:?}");
+}
+
+/// The curves run over the box where it crawled: every curve ends on the
+/// box's edge or at a codimension-two point but the one fold curve whose
+/// system turns singular, which ends there, named so, within its first
+/// hundred points (it crawled 2000 points at the smallest step).
+#[test]
+fn the_curves_of_the_box_end_and_none_twice() {
+    let opts = CurvesOptions {
+        x: ("W".into(), [2.3, 2.6]),
+        y: ("Q0".into(), [1.0, 3.0]),
+        seeds: Vec::new(),
+        at: Vec::new(),
+    };
+    let set = curves_with::<Stribeck8>(
+        &stribeck8::Params::default(),
+        &opts,
+        &CurvesSettings::default(),
+    )
+    .expect("curves");
+    let mut seen = Vec::new();
+    for c in &set.curves {
+        let key = (c.kind, c.boundary.clone(), c.structure.clone());
+        let first = c.points.first().copied();
+        assert!(
+            !seen.contains(&(key.clone(), first)),
+            "traced twice: {key:?}"
+        );
+        seen.push((key, first));
+        assert!(
+            c.points.len() < 1000,
+            "{:?}: {} points",
+            c.kind,
+            c.points.len()
+        );
+    }
+    assert!(set.curves.len() >= 10, "{} curves", set.curves.len());
+}
