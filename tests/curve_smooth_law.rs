@@ -19,7 +19,8 @@
 //! exact crossing of the branch's line.
 
 use stickslip::bifurcation::curve::{
-    condition_at_transition, crossings, trace, Condition, CurveEndReason, CurveOptions, Line, Plane,
+    condition_at_transition, crossings, trace, Condition, CurveEndReason, CurveError, CurveOptions,
+    Line, Plane,
 };
 use stickslip::bifurcation::{follow, ContinuationOptions, EndReason, Start, TransitionKind};
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
@@ -159,6 +160,19 @@ fn a_splitting_excursion_is_traced_on_its_interior_margin() {
             .all(|e| !matches!(e.reason, CurveEndReason::MaxPoints)),
         "{:?}",
         curve.ends
+    );
+    // The start of stop 22 (the arrival's margin, 0.52 there) is refused:
+    // its corrector ran 0.03 in W to where the arrival grazes.
+    let wrong = Condition::Margin {
+        kind: ViolationKind::Arrival,
+        segment: arrival.segment,
+        boundary: arrival.boundary,
+    };
+    let refused = trace::<Stribeck8>(&base, &plane, Some(&m.structure), &start, wrong, &opts);
+    assert!(
+        matches!(refused, Err(CurveError::Start(_))),
+        "{:?}",
+        refused.map(|c| c.points.first().map(|p| (p.x, p.y)))
     );
 }
 

@@ -19,6 +19,10 @@ use super::{Condition, Curve, CurveEnd, CurveError, CurveOptions, CurvePoint, Pl
 /// A segment shorter than this (in `W t`) at a transition shrinks to nothing there.
 const VANISHING: f64 = 1e-3;
 
+/// How far (in the plane, each parameter over its span) the corrected start
+/// of a curve may lie from the transition it is started at.
+const START_REACH: f64 = 1e-4;
+
 /// The unknowns `(x_0, W t_0, …, λx, λy)` of a curve point.
 pub fn unknowns(point: &CurvePoint) -> Vec<f64> {
     let mut x = Vec::with_capacity(2 * point.points.len() + 2);
@@ -261,8 +265,19 @@ pub fn trace<M: Model>(
             .correct(&mut trial, &border, &x, opts.tolerance, 40)
         {
             Correction::Converged { .. } => {
-                corrected = Some(trial);
-                break;
+                // The condition must vanish at the start, not elsewhere: a
+                // corrector that runs off (the start's condition not the
+                // one that vanishes there) would trace another curve.
+                let moved = ((trial[n - 2] - x[n - 2]) / (plane.x_range[1] - plane.x_range[0]))
+                    .abs()
+                    + ((trial[n - 1] - x[n - 1]) / (plane.y_range[1] - plane.y_range[0])).abs();
+                if moved <= START_REACH {
+                    corrected = Some(trial);
+                    break;
+                }
+                why = format!(
+                    "the condition vanishes {moved:.1e} of the box away from the start, not at it"
+                );
             }
             Correction::Failed(w) => why = w,
         }
