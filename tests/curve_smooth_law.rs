@@ -246,3 +246,49 @@ fn the_curves_of_the_box_end_and_none_twice() {
     }
     assert!(set.curves.len() >= 10, "{} curves", set.curves.len());
 }
+
+/// `stickslip sweep --max-mappings M`: the same cap from the command line;
+/// 0 is refused with a message that names the option.
+#[test]
+fn the_sweep_command_takes_the_cap() {
+    let bin = env!("CARGO_BIN_EXE_stickslip");
+    let args = [
+        "sweep",
+        "--model",
+        "stribeck8",
+        "--param",
+        "W=2.5:2.51:12",
+        "--set",
+        "Q0=2.5",
+        "--json",
+        "--max-mappings",
+    ];
+    let out = std::process::Command::new(bin)
+        .args(args)
+        .arg("16")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let branches = v["branches"].as_array().unwrap();
+    assert!(!branches.is_empty());
+    for b in branches {
+        let s = b["structure"].as_str().unwrap();
+        assert!(s.split(' ').count() <= 16, "{s}");
+    }
+    let out = std::process::Command::new(bin)
+        .args(args)
+        .arg("0")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("--max-mappings"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}

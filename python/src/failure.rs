@@ -111,7 +111,7 @@ impl From<SweepError> for Failure {
         match e {
             SweepError::Orbit(e) => e.into(),
             SweepError::Params(_) | SweepError::UnknownParam(_) => Self::new(Kind::Param, e),
-            SweepError::Range(_) => Self::new(Kind::Input, e),
+            SweepError::Range(_) | SweepError::Options(_) => Self::new(Kind::Input, e),
         }
     }
 }

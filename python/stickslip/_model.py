@@ -126,18 +126,22 @@ class Model:
         starts: Optional[int] = None,
         every: Optional[int] = None,
         unstable: bool = True,
+        max_mappings: Optional[int] = None,
         **fixed: Number,
     ) -> Sweep:
         """Follow the periodic motions along ``param`` over ``values`` (an
         increasing array, list or range; need not be evenly spaced), with the
         branches, transitions and bifurcations (``stickslip sweep``).
         ``starts``/``every``: the global search for coexisting motions;
-        ``unstable=False`` gives the view without unstable motions."""
+        ``unstable=False`` gives the view without unstable motions;
+        ``max_mappings``: follow no branch of a motion of more mappings
+        (a period-doubling cascade into chaos otherwise follows hundreds)."""
         grid = np.asarray(list(values) if not isinstance(values, np.ndarray) else values, dtype=float)
         if grid.ndim != 1:
             raise InputError(f"values: expected a 1-d sequence, got shape {grid.shape}")
         data = _native.sweep(
-            self.name, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable)
+            self.name, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable),
+            max_mappings,
         )
         return Sweep(json.loads(data))
 

@@ -43,6 +43,7 @@ def sweep(
     starts: Optional[int] = None,
     every: Optional[int] = None,
     unstable: bool = True,
+    max_mappings: Optional[int] = None,
 ) -> str: ...
 def orbit_diagram(
     model: str,

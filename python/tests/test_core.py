@@ -148,6 +148,20 @@ def test_sweep_without_unstable_is_the_clis(paper, cli):
     close(s.to_dict(), want)
 
 
+def test_sweep_max_mappings_is_the_clis(cli):
+    """Into stribeck8's period-doubling cascade: no branch of more than 16
+    mappings is followed, as the CLI's ``--max-mappings 16``; 0 is an input
+    error."""
+    s8 = stickslip.Model("stribeck8")
+    s = s8.sweep("W", np.linspace(2.5, 2.51, 12), max_mappings=16, Q0=2.5)
+    want = cli.json("sweep", "--model", "stribeck8", "--param", "W=2.5:2.51:12",
+                    "--set", "Q0=2.5", "--max-mappings", "16")
+    close(s.to_dict(), want)
+    assert all(len(b["structure"].split()) <= 16 for b in want["branches"])
+    with pytest.raises(stickslip.InputError, match="max_mappings"):
+        s8.sweep("W", [2.5, 2.51], max_mappings=0, Q0=2.5)
+
+
 def test_sweep_takes_an_uneven_grid(paper):
     """An uneven grid: each grid value's motions are those at that value."""
     values = [3.0, 3.05, 3.5, 3.9, 4.0]

@@ -45,6 +45,12 @@ pub struct SweepArgs {
     /// transition); 0: only past transitions.
     #[arg(long, value_name = "k", default_value_t = SweepOptions::default().every)]
     every: usize,
+    /// Follow no branch of a motion of more than M mappings (default: every
+    /// one). A period-doubling cascade into chaos otherwise follows branches
+    /// of hundreds of mappings; the longer motions are still named where a
+    /// simulation past a transition finds them.
+    #[arg(long, value_name = "M")]
+    max_mappings: Option<usize>,
 }
 
 /// The sweep as text or JSON, and its figure.
@@ -72,6 +78,7 @@ impl WithModel for SweepCmd {
         let opts = SweepOptions {
             starts: self.args.starts,
             every: self.args.every,
+            max_mappings: self.args.max_mappings,
             ..SweepOptions::default()
         };
         let sw = sweep::<M>(base, &name, from, to, count, opts)?;

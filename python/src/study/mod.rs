@@ -59,6 +59,7 @@ struct Sweep {
     starts: usize,
     every: usize,
     unstable: bool,
+    max_mappings: Option<usize>,
 }
 
 impl Command for Sweep {
@@ -67,6 +68,7 @@ impl Command for Sweep {
         let opts = SweepOptions {
             starts: self.starts,
             every: self.every,
+            max_mappings: self.max_mappings,
             ..SweepOptions::default()
         };
         let base = params::<M>(&self.set)?;
@@ -80,7 +82,7 @@ impl Command for Sweep {
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, name, values, starts = None, every = None, unstable = true))]
+#[pyo3(signature = (model, set, name, values, starts = None, every = None, unstable = true, max_mappings = None))]
 pub fn sweep(
     py: Python<'_>,
     model: &str,
@@ -90,6 +92,7 @@ pub fn sweep(
     starts: Option<usize>,
     every: Option<usize>,
     unstable: bool,
+    max_mappings: Option<usize>,
 ) -> PyResult<String> {
     let defaults = SweepOptions::default();
     let cmd = Sweep {
@@ -99,6 +102,7 @@ pub fn sweep(
         starts: starts.unwrap_or(defaults.starts),
         every: every.unwrap_or(defaults.every),
         unstable,
+        max_mappings,
     };
     Ok(py.detach(|| with_model(model, cmd))?)
 }

@@ -213,6 +213,9 @@ pub enum SweepError {
     /// A bad range.
     #[error("bad sweep range: {0}")]
     Range(String),
+    /// Bad settings.
+    #[error("bad sweep settings: {0}")]
+    Options(String),
     /// The first motion could not be found.
     #[error(transparent)]
     Orbit(#[from] OrbitError),
@@ -469,6 +472,11 @@ fn sweep_grid<M: Model>(
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
     let index = <M::Params as ParamSet>::index_of(name)
         .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
+    if opts.max_mappings == Some(0) {
+        return Err(SweepError::Options(
+            "the longest branch followed (--max-mappings, max_mappings) must have at least 1 mapping, not 0".into(),
+        ));
+    }
     let (from, to) = (values[0], values[values.len() - 1]);
     // The parameters must be valid at both ends (the error says which).
     with(&base, index, from)?;
