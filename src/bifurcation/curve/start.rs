@@ -268,9 +268,7 @@ pub fn trace<M: Model>(
                 // The condition must vanish at the start, not elsewhere: a
                 // corrector that runs off (the start's condition not the
                 // one that vanishes there) would trace another curve.
-                let moved = ((trial[n - 2] - x[n - 2]) / (plane.x_range[1] - plane.x_range[0]))
-                    .abs()
-                    + ((trial[n - 1] - x[n - 1]) / (plane.y_range[1] - plane.y_range[0])).abs();
+                let moved = tracer.plane_distance(&trial, &x);
                 if moved <= START_REACH {
                     corrected = Some(trial);
                     break;

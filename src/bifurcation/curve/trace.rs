@@ -565,7 +565,7 @@ impl<M: Model> Tracer<'_, M> {
 
     /// The distance of `x` and `y` in the parameter plane alone (each
     /// parameter over its range's span).
-    fn plane_distance(&self, x: &[f64], y: &[f64]) -> f64 {
+    pub(super) fn plane_distance(&self, x: &[f64], y: &[f64]) -> f64 {
         let n = x.len();
         let spans = self.sys.spans();
         ((x[n - 2] - y[n - 2]) / spans[0]).hypot((x[n - 1] - y[n - 1]) / spans[1])

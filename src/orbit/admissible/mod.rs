@@ -450,10 +450,11 @@ fn walk<M: Model>(
                 // force balance at the stick's end cancels to a few ulps of
                 // its terms, whose sign is noise (stribeck8: ±3e-13 at
                 // every departure from the stick, flickering along a sweep).
+                let coef = sim.coefficients(j);
                 let acc_scale = M::oscillator(p).amplitude.abs()
-                    + sim.coefficients(j).b.abs()
-                    + (sim.coefficients(j).c * a.x).abs()
-                    + (sim.coefficients(j).two_d * va).abs();
+                    + coef.b.abs()
+                    + (coef.c * a.x).abs()
+                    + (coef.two_d * va).abs();
                 let flat_departure = (into * acc0).abs() <= FLAT_DEPARTURE * acc_scale;
                 let acc_into = if flat_departure { 0.0 } else { into * acc0 };
                 let dep = if flat_departure {
