@@ -330,7 +330,11 @@ fn the_codim2_end_is_a_grazing_and_a_passable_onset() {
         let all = conditions(&sim, &t.structure, &e.at.points);
         let grazing = all
             .iter()
-            .find(|c| c.kind == ViolationKind::Interior && c.segment == 1)
+            .find(|c| {
+                c.kind == ViolationKind::Interior
+                    && c.segment == 1
+                    && c.boundary == t.curve.boundary
+            })
             .expect("the grazing margin");
         assert!(
             grazing.margin.abs() <= 1e-10,

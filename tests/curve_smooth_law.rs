@@ -14,6 +14,11 @@
 //!    twice `--max-mappings`.
 //! 3. Curves crawled to the point limit where their system turns singular.
 //!
+//! And two found on the whole box `W = 0.5…3 × Q0 = 1…12` (stop 24): a
+//! grazing margin reported only where it was the smaller of a segment's two
+//! boundaries (a curve with no condition wherever the flow neared the other
+//! one), and curves crawling in steps of a few smallest steps.
+//!
 //! Checked independently: the transition located by following the branch
 //! (its end), the margins of `admissible::conditions` there, and the curve's
 //! exact crossing of the branch's line.
@@ -216,9 +221,49 @@ fn a_capped_sweep_follows_no_longer_branch() {
 /// hundred points (it crawled 2000 points at the smallest step).
 #[test]
 fn the_curves_of_the_box_end_and_none_twice() {
+    let set = box_curves([2.3, 2.6], [1.0, 3.0]);
+    assert!(set.curves.len() >= 10, "{} curves", set.curves.len());
+}
+
+/// A segment of `1_11` (in `1 < v < 1.25`, from `Sigma1` back to
+/// `Sigma1`) whose maximum grazes `Sigma2` while a later minimum dips
+/// towards `Sigma1`: the grazing margin to `Sigma2` was reported only where
+/// it was the smaller of the two, so off the curve, wherever the dip came
+/// nearer `Sigma1`, the curve's condition was undefined. The curve crawled
+/// to the point limit (steps of 3e-6) and five seed lines traced it again:
+/// eleven curves, five of them copies ending at the point limit. Each
+/// boundary's interior margin is now a condition of its own.
+#[test]
+fn a_grazing_curve_is_traced_where_the_flow_nears_both_boundaries() {
+    let set = box_curves([1.2, 1.3], [4.2, 4.45]);
+    let grazing: Vec<_> = set
+        .curves
+        .iter()
+        .filter(|c| c.kind == TransitionKind::Grazing && c.boundary.as_deref() == Some("Sigma2"))
+        .collect();
+    assert_eq!(grazing.len(), 1, "{grazing:#?}");
+    for c in &set.curves {
+        for e in [&c.from, &c.to].into_iter().flatten() {
+            assert!(
+                e.reason == "box_edge" || e.reason == "codim2",
+                "{:?} {:?} {}: ends {} at {:?} ({:?})",
+                c.kind,
+                c.boundary,
+                c.structure,
+                e.reason,
+                e.point,
+                e.detail
+            );
+        }
+    }
+}
+
+/// The curves of the box `W × Q0` from the default seeds, each checked to
+/// be traced once and in fewer than 1000 points.
+fn box_curves(w: [f64; 2], q: [f64; 2]) -> stickslip::study::curves::CurveSet {
     let opts = CurvesOptions {
-        x: ("W".into(), [2.3, 2.6]),
-        y: ("Q0".into(), [1.0, 3.0]),
+        x: ("W".into(), w),
+        y: ("Q0".into(), q),
         seeds: Vec::new(),
         at: Vec::new(),
     };
@@ -267,7 +312,7 @@ fn the_curves_of_the_box_end_and_none_twice() {
             c.points.len()
         );
     }
-    assert!(set.curves.len() >= 10, "{} curves", set.curves.len());
+    set
 }
 
 /// `stickslip sweep --max-mappings M`: the same cap from the command line;
@@ -314,4 +359,38 @@ fn the_sweep_command_takes_the_cap() {
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
+}
+
+/// A grazing curve of `Sigma1` whose extremum merges with its partner at
+/// the tangential departure of the segment (`1_21` after a pass through
+/// `Sigma1`): its condition is defined on a sliver that narrows towards the
+/// codimension-two point, and every step longer than a few smallest ones
+/// leaves it. It crawled to the point limit (2000 points of 5e-9); it now
+/// ends where its last 48 steps cover less than 100 smallest steps each,
+/// and says which margin vanishes ahead.
+#[test]
+fn a_crawling_curve_ends_and_says_why() {
+    let opts = CurvesOptions {
+        x: ("W".into(), [0.5, 3.0]),
+        y: ("Q0".into(), [4.6, 4.8]),
+        seeds: Vec::new(),
+        at: Vec::new(),
+    };
+    let set = curves_with::<Stribeck8>(
+        &stribeck8::Params::default(),
+        &opts,
+        &CurvesSettings::default(),
+    )
+    .expect("curves");
+    let mut crawled = 0;
+    for c in &set.curves {
+        for e in [&c.from, &c.to].into_iter().flatten() {
+            assert_ne!(e.reason, "max_points", "{:?} {}", c.kind, c.structure);
+            if e.detail.as_deref().is_some_and(|d| d.contains("crawls")) {
+                crawled += 1;
+                assert!(c.points.len() < 1000, "{} points", c.points.len());
+            }
+        }
+    }
+    assert!(crawled >= 1, "no curve crawls");
 }

@@ -57,23 +57,26 @@ fn sampled_interior_margin<M: Model>(
     n: usize,
     ends: bool,
     flat: bool,
-) -> Option<(f64, usize)> {
+) -> [Option<(f64, usize)>; 2] {
     let dom = M::INFO.domains[j];
     let p = sim.params();
     let h = (end - seg.phase) / n as f64;
-    let mut best: Option<(f64, usize)> = None;
+    // The smallest margin to the lower and to the upper boundary, each a
+    // condition of its own.
+    let mut best: [Option<(f64, usize)>; 2] = [None; 2];
     let mut consider = |v: f64, extremum: bool| {
-        for k in [dom.lower, dom.upper].into_iter().flatten() {
+        for (side, k) in [dom.lower, dom.upper].into_iter().enumerate() {
+            let Some(k) = k else { continue };
             if !extremum && touched.contains(&k) {
                 continue;
             }
-            let margin = if Some(k) == dom.lower {
+            let margin = if side == 0 {
                 v - sim.velocity(k)
             } else {
                 sim.velocity(k) - v
             };
-            if best.is_none_or(|(m, _)| margin < m) {
-                best = Some((margin, k));
+            if best[side].is_none_or(|(m, _)| margin < m) {
+                best[side] = Some((margin, k));
             }
         }
     };
@@ -125,7 +128,8 @@ fn sampled_interior_margin<M: Model>(
 }
 
 /// The conditions as computed before the closed-form extrema (verbatim but
-/// for the interior margin's `n` and `ends`).
+/// for the interior margin's `n` and `ends`, and its one margin per
+/// boundary of the domain).
 fn sampled_conditions<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
@@ -286,7 +290,12 @@ fn sampled_conditions<M: Model>(
                         } else {
                             "crosses"
                         };
-                        let depth = interior().map_or(0.0, |(m, _)| m.min(0.0));
+                        let depth = interior()
+                            .into_iter()
+                            .flatten()
+                            .map(|(m, _)| m)
+                            .reduce(f64::min)
+                            .map_or(0.0, |m| m.min(0.0));
                         add(
                             ViolationKind::Interior,
                             Some(e.boundary),
@@ -301,7 +310,7 @@ fn sampled_conditions<M: Model>(
                         );
                     }
                     Ok(Some(_)) => {
-                        if let Some((margin, kb)) = interior() {
+                        for (margin, kb) in interior().into_iter().flatten() {
                             add(
                                 ViolationKind::Interior,
                                 Some(kb),

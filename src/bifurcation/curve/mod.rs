@@ -40,6 +40,7 @@ mod condition;
 mod crossing;
 pub mod extended;
 mod start;
+mod stop;
 mod trace;
 
 pub use condition::condition_scale;

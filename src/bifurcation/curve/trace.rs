@@ -26,11 +26,12 @@ use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::detect;
 use crate::bifurcation::TransitionKind;
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::{ConditionId, ViolationKind, SAME_EVENT};
+use crate::orbit::admissible::ConditionId;
 use crate::orbit::periodic::monodromy;
 use crate::orbit::stability::Stability;
 
 use super::extended::Extended;
+use super::stop::PAIR_REACH;
 use super::{Condition, CurveEndReason, CurveOptions, Plane};
 use crate::bifurcation::locate::regula_falsi;
 
@@ -79,33 +80,6 @@ pub(super) struct Tracer<'a, M: Model> {
 }
 
 const NEWTON_ITERATIONS: usize = 12;
-
-/// How many smallest steps beyond the last point a vanishing other margin
-/// may reach zero for a corrector failure there to be a codimension-two
-/// end ([`Tracer::vanishing_other`]).
-const CODIM2_REACH: f64 = 16.0;
-
-/// Over how many of the last steps the trend of a vanishing other margin
-/// is measured ([`Tracer::vanishing_other`]).
-const TREND_POINTS: usize = 12;
-
-/// How far beyond the linear extrapolation of the vanishing other margin
-/// a codimension-two point solved directly may lie
-/// ([`Tracer::vanishing_other`]).
-const PAIR_REACH: f64 = 4.0;
-
-/// Over how many accepted steps a curve that makes no headway has stalled
-/// ([`Tracer::stalled`]).
-const STALL_POINTS: usize = 48;
-
-/// Newton iterations at most for a codimension-two point solved directly
-/// ([`Extended::correct_pair`] stops earlier once its residuals stall at
-/// rounding).
-const PAIR_ITERATIONS: usize = 64;
-
-/// How many margins at most a codimension-two point is solved with in turn
-/// ([`Tracer::pair_point`]).
-const PAIR_RESOLVES: usize = 3;
 
 impl<M: Model> Tracer<'_, M> {
     /// Everything watched at a corrected point `x` with tangent `t`.
@@ -255,7 +229,12 @@ impl<M: Model> Tracer<'_, M> {
 
     /// The special points (a fold or period-doubling curve met) between
     /// `a` and `b` (`b` at arclength `s_b`), located, in arclength order.
-    fn specials(&mut self, a: &Sample, b: &Sample, s_b: f64) -> Vec<(Sample, TransitionKind)> {
+    pub(super) fn specials(
+        &mut self,
+        a: &Sample,
+        b: &Sample,
+        s_b: f64,
+    ) -> Vec<(Sample, TransitionKind)> {
         let mut out = Vec::new();
         let condition = self.sys.eval.condition;
         if !matches!(condition, Condition::Margin { .. }) {
@@ -378,191 +357,6 @@ impl<M: Model> Tracer<'_, M> {
         None
     }
 
-    /// Where the corrector fails even at the smallest step, whether the
-    /// curve has run into a codimension-two point it cannot step past: the
-    /// smallest other margin falls towards zero along the last steps. There
-    /// the curve's own system may turn singular as the other condition
-    /// vanishes (an arrival before a stick turning tangential leaves the
-    /// stick's start free along the stick to first order), or its own
-    /// condition stop existing (a grazing extremum that leaves the segment
-    /// through its arrival as that arrival turns tangential: no extremum,
-    /// no grazing margin, beyond), so no candidate with the other margin
-    /// `<= 0` is ever accepted for [`Self::codim2`] to locate.
-    ///
-    /// The point is solved where both conditions vanish
-    /// ([`Self::pair_point`]), if that converges ahead of `prev`, in the
-    /// plane within [`PAIR_REACH`] times the linear extrapolation of the
-    /// margin along the last [`TREND_POINTS`] steps (plus [`CODIM2_REACH`]
-    /// smallest steps);
-    /// otherwise `prev` is the end if that extrapolation (in the scaled
-    /// metric) reaches zero within [`CODIM2_REACH`] smallest steps. `None`:
-    /// a plain failure.
-    fn vanishing_other(
-        &mut self,
-        points: &[Sample],
-        prev: &Sample,
-    ) -> Option<(CurveEndReason, Sample)> {
-        // The trend over the last few steps: at the smallest step the
-        // margin's rounding (a few 1e-8 on a stick onset near a tangential
-        // arrival) is as large as its fall over one step.
-        let first = points.len().saturating_sub(TREND_POINTS + 1);
-        let before = points[first..points.len().checked_sub(1)?]
-            .iter()
-            .find(|q| q.other.is_finite())?;
-        let (o0, o1) = (before.other, prev.other);
-        if !(o0.is_finite() && o1.is_finite() && o1 >= 0.0 && o1 < o0) {
-            return None;
-        }
-        let step = self.sys.distance(&prev.x, &before.x);
-        // Linear extrapolation of the margin along the last steps.
-        let reach = o1 * step / (o0 - o1);
-        if reach.is_nan() {
-            return None;
-        }
-        // The same in the plane alone.
-        let reach_plane = o1 * self.plane_distance(&prev.x, &before.x) / (o0 - o1);
-        let (kind, boundary) = prev
-            .worst
-            .map_or((TransitionKind::Grazing, None), |(k, _, b)| {
-                (transition_kind(k), b)
-            });
-        let reason = CurveEndReason::Codim2 { kind, boundary };
-        let bound = PAIR_REACH * reach_plane + CODIM2_REACH * self.opts.min_step;
-        if let Some(at) = self.pair_point(prev, bound) {
-            return Some((reason, at));
-        }
-        if reach > CODIM2_REACH * self.opts.min_step {
-            return None;
-        }
-        Some((reason, prev.clone()))
-    }
-
-    /// The end of a curve that cannot go on from `prev` (the last of
-    /// `points`) for the reason `why`: a codimension-two point ahead if
-    /// [`Self::vanishing_other`] finds one (added to `points`, with the
-    /// special points met on the way there), else `prev` with `why`.
-    fn stop(
-        &mut self,
-        points: &mut Vec<Sample>,
-        special: &mut Vec<Found>,
-        prev: Sample,
-        why: String,
-    ) -> (CurveEndReason, Sample) {
-        let Some((reason, at)) = self.vanishing_other(points, &prev) else {
-            return (CurveEndReason::NewtonFailure(why), prev);
-        };
-        let s_c = self.sys.dot_diff(&prev.t, &at.x, &prev.x);
-        if s_c > 0.0 {
-            for (sp, kind) in self.specials(&prev, &at, s_c) {
-                special.push(Found {
-                    index: points.len() - 1,
-                    kind,
-                    at: sp,
-                });
-            }
-            points.push(at.clone());
-        }
-        (reason, at)
-    }
-
-    /// Why the curve has stalled, if it has: the last [`STALL_POINTS`]
-    /// steps were all accepted at the smallest step only (the corrector
-    /// converges, slowly, on a system singular there), or together moved
-    /// the parameters by less than the location tolerance (the curve runs
-    /// through the switching points alone, as where an interior extremum
-    /// leaves its segment through an arrival that turns tangential). Either
-    /// way it would crawl on to the point limit; it ends there, at a
-    /// codimension-two point if one is solved ([`Self::vanishing_other`]).
-    fn stalled(&self, points: &[Sample], at_min: usize) -> Option<String> {
-        if at_min >= STALL_POINTS {
-            return Some(format!(
-                "the corrector converges only at the smallest step ({:.0e}) over {STALL_POINTS} steps: the system is singular there",
-                self.opts.min_step
-            ));
-        }
-        let n = points.len().checked_sub(STALL_POINTS + 1)?;
-        let (a, b) = (&points[n].x, &points[points.len() - 1].x);
-        let k = a.len();
-        let tol = self.opts.location_tolerance;
-        let moved = (a[k - 2] - b[k - 2]).abs().max((a[k - 1] - b[k - 1]).abs());
-        (moved < tol).then(|| {
-            format!(
-                "the curve stalls: its last {STALL_POINTS} steps move the parameters by {moved:.1e}, less than the location tolerance {tol:.0e}"
-            )
-        })
-    }
-
-    /// The point where the curve's condition and the smallest other
-    /// margin at `prev` (a margin of the motion) vanish together, solved
-    /// from `prev` with both parameters free
-    /// ([`Extended::correct_pair`]), if it lies ahead of `prev`, within
-    /// `bound` of it in the plane (each parameter over its span), in the
-    /// box, and every other condition holds there (to [`SAME_EVENT`]: the
-    /// second condition and those that vanish with it are zero there up to
-    /// rounding; a solution on the far root of another arrival's equation
-    /// is refused).
-    ///
-    /// Where a third margin is negative there, it vanished first: the
-    /// point is solved again with that one, up to [`PAIR_RESOLVES`] times.
-    /// Where two such solutions coincide in the plane to the location
-    /// tolerance relative to each parameter's magnitude, the conditions
-    /// vanish together to the tolerance the ends are located to, and the
-    /// first along the curve is the end: two stick onsets of a
-    /// period-adding cascade vanishing together near its accumulation,
-    /// whose steep margins make each `-3e-6` at the other's point,
-    /// `1.5e-10` away in `Q0 = 46.7`.
-    fn pair_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
-        let mut id = prev.worst?;
-        let tol = self.opts.location_tolerance;
-        let n = prev.x.len();
-        let mut last: Option<Sample> = None;
-        for _ in 0..PAIR_RESOLVES {
-            let at = self.pair_point_with(prev, id, bound)?;
-            if at.other >= -SAME_EVENT {
-                return Some(at);
-            }
-            if let Some(l) = last {
-                let same = |i: usize| (l.x[i] - at.x[i]).abs() <= tol * l.x[i].abs().max(1.0);
-                if same(n - 2) && same(n - 1) {
-                    let (sl, sa) = (
-                        self.sys.dot_diff(&prev.t, &l.x, &prev.x),
-                        self.sys.dot_diff(&prev.t, &at.x, &prev.x),
-                    );
-                    return Some(if sl <= sa { l } else { at });
-                }
-            }
-            id = at.worst?;
-            last = Some(at);
-        }
-        None
-    }
-
-    /// [`Self::pair_point`] with the second condition `id`, whatever the
-    /// other margins there.
-    fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {
-        if !matches!(self.sys.eval.condition, Condition::Margin { .. })
-            || self.sys.eval.structure.is_none()
-            || id.0 == ViolationKind::Other
-        {
-            return None;
-        }
-        self.sys.pair = Some(self.sys.eval.companion(id));
-        let mut x = prev.x.clone();
-        let done = self
-            .sys
-            .correct_pair(&mut x, self.opts.tolerance, PAIR_ITERATIONS);
-        self.sys.pair = None;
-        if !matches!(done, Correction::Converged { .. }) || self.out_of_box(&x) {
-            return None;
-        }
-        let ahead = self.sys.dot_diff(&prev.t, &x, &prev.x);
-        let far = self.plane_distance(&x, &prev.x);
-        if !(ahead > 0.0 && far <= bound) {
-            return None;
-        }
-        self.examine(x, prev.t.clone()).ok()
-    }
-
     /// The distance of `x` and `y` in the parameter plane alone (each
     /// parameter over its range's span).
     pub(super) fn plane_distance(&self, x: &[f64], y: &[f64]) -> f64 {
@@ -571,7 +365,7 @@ impl<M: Model> Tracer<'_, M> {
         ((x[n - 2] - y[n - 2]) / spans[0]).hypot((x[n - 1] - y[n - 1]) / spans[1])
     }
 
-    fn out_of_box(&self, x: &[f64]) -> bool {
+    pub(super) fn out_of_box(&self, x: &[f64]) -> bool {
         let n = x.len();
         let (a, b) = (x[n - 2], x[n - 1]);
         a < self.plane.x_range[0]

@@ -153,6 +153,14 @@ struct FlowCheck {
 }
 
 impl FlowCheck {
+    /// The interior margin to each of the domain's boundaries that counts
+    /// (lower, then upper): a margin of its own per boundary, so that the
+    /// margin to one is defined (and smooth) whatever the other's.
+    fn per_boundary(&self) -> [Option<(f64, usize)>; 2] {
+        self.sides
+            .map(|(b, m)| b.filter(|_| m != f64::INFINITY).map(|k| (m, k)))
+    }
+
     /// Whether the closed form keeps the flow strictly inside, off boundary
     /// `k`, by a margin within the band where the event search is asked
     /// (see `contact::first_contact`).
@@ -489,6 +497,13 @@ fn walk<M: Model>(
                     Some(c) => c.interior,
                     None => Some((f64::NAN, mi.to)),
                 };
+                // Each boundary of the domain on its own: where the flow
+                // nears both, the margin to one is a condition of its own
+                // however small the other's (a curve traces it across).
+                let per_boundary = || match &check {
+                    Some(c) => c.per_boundary(),
+                    None => [Some((f64::NAN, mi.to)), None],
+                };
                 // The arrival on β is the first boundary contact: certain from
                 // the closed form when every margin is clear of zero, else
                 // the event search decides.
@@ -509,7 +524,7 @@ fn walk<M: Model>(
                 };
                 match outcome {
                     Outcome::Arrives => {
-                        if let Some((margin, kb)) = interior() {
+                        for (margin, kb) in per_boundary().into_iter().flatten() {
                             add(ViolationKind::Interior, Some(kb), margin, &|| {
                                 format!(
                                     "the flow of {} must stay off {} before its arrival",
