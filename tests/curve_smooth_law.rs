@@ -258,21 +258,26 @@ fn a_grazing_curve_is_traced_where_the_flow_nears_both_boundaries() {
     }
 }
 
-/// The curves of the box `W × Q0` from the default seeds, each checked to
-/// be traced once and in fewer than 1000 points.
-fn box_curves(w: [f64; 2], q: [f64; 2]) -> stickslip::study::curves::CurveSet {
+/// The curves of the box `W × Q0` from the default seeds.
+fn curves_of(w: [f64; 2], q: [f64; 2]) -> stickslip::study::curves::CurveSet {
     let opts = CurvesOptions {
         x: ("W".into(), w),
         y: ("Q0".into(), q),
         seeds: Vec::new(),
         at: Vec::new(),
     };
-    let set = curves_with::<Stribeck8>(
+    curves_with::<Stribeck8>(
         &stribeck8::Params::default(),
         &opts,
         &CurvesSettings::default(),
     )
-    .expect("curves");
+    .expect("curves")
+}
+
+/// The curves of the box `W × Q0` from the default seeds, each checked to
+/// be traced once and in fewer than 1000 points.
+fn box_curves(w: [f64; 2], q: [f64; 2]) -> stickslip::study::curves::CurveSet {
+    let set = curves_of(w, q);
     // One curve traced twice (from two starts) has the same kind, boundary
     // and motion and the same two ends, in either order: stop 22's seven
     // copies ran between (2.3, 1.32478) and (2.47725, 1.37618).
@@ -370,18 +375,7 @@ fn the_sweep_command_takes_the_cap() {
 /// and says which margin vanishes ahead.
 #[test]
 fn a_crawling_curve_ends_and_says_why() {
-    let opts = CurvesOptions {
-        x: ("W".into(), [0.5, 3.0]),
-        y: ("Q0".into(), [4.6, 4.8]),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    };
-    let set = curves_with::<Stribeck8>(
-        &stribeck8::Params::default(),
-        &opts,
-        &CurvesSettings::default(),
-    )
-    .expect("curves");
+    let set = curves_of([0.5, 3.0], [4.6, 4.8]);
     let mut crawled = 0;
     for c in &set.curves {
         for e in [&c.from, &c.to].into_iter().flatten() {
