@@ -17,7 +17,9 @@
 //! And two found on the whole box `W = 0.5…3 × Q0 = 1…12` (stop 24): a
 //! grazing margin reported only where it was the smaller of a segment's two
 //! boundaries (a curve with no condition wherever the flow neared the other
-//! one), and curves crawling in steps of a few smallest steps.
+//! one), and curves crawling in steps of a few smallest steps; and, on
+//! the Shaw case of `coulomb`, what a curve that cannot reach its
+//! codimension-two point says of it.
 //!
 //! Checked independently: the transition located by following the branch
 //! (its end), the margins of `admissible::conditions` there, and the curve's
@@ -387,4 +389,47 @@ fn a_crawling_curve_ends_and_says_why() {
         }
     }
     assert!(crawled >= 1, "no curve crawls");
+}
+
+/// The Shaw case of `coulomb` (`V = 0`, `d = 0`, `mus = 0.45`,
+/// `muk = 0.3`): two grazing curves of `Sigma1` (of two motions) run into
+/// the point where the grazing minimum merges with a maximum at the
+/// departure of a pass that turns tangential. The corrector fails there
+/// (the tangent turns by 78.5°), and the end says that the pass's margin
+/// has fallen to under 1e-3 of itself and a codimension-two point lies
+/// ahead; both curves end at the same point.
+#[test]
+fn a_grazing_curve_into_a_tangential_pass_says_what_lies_ahead() {
+    use stickslip::models::coulomb::{self, Coulomb};
+    let base = coulomb::Params {
+        V: 0.0,
+        d: 0.0,
+        mus: 0.45,
+        muk: 0.3,
+        ..coulomb::Params::default()
+    };
+    let opts = CurvesOptions {
+        x: ("W".into(), [0.3, 1.2]),
+        y: ("Q0".into(), [0.5, 2.0]),
+        seeds: Vec::new(),
+        at: Vec::new(),
+    };
+    let set = curves_with::<Coulomb>(&base, &opts, &CurvesSettings::default()).expect("curves");
+    let ahead: Vec<[f64; 2]> = set
+        .curves
+        .iter()
+        .flat_map(|c| [&c.from, &c.to].into_iter().flatten())
+        .filter(|e| {
+            e.detail
+                .as_deref()
+                .is_some_and(|d| d.contains("stick_onset margin") && d.contains("lies ahead"))
+        })
+        .map(|e| e.point)
+        .collect();
+    assert_eq!(ahead.len(), 2, "{ahead:?}");
+    let (a, b) = (ahead[0], ahead[1]);
+    assert!(
+        (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9,
+        "{a:?} {b:?}"
+    );
 }

@@ -36,6 +36,10 @@ const STALL_POINTS: usize = 48;
 /// limit comes long before the curve gets anywhere.
 const CRAWL_STEPS: f64 = 100.0;
 
+/// A margin that falls to less than this fraction of itself over the last
+/// [`TREND_POINTS`] steps is vanishing ([`Tracer::falling_other`]).
+const FALLEN: f64 = 1e-3;
+
 /// Newton iterations at most for a codimension-two point solved directly
 /// ([`Extended::correct_pair`](super::extended::Extended::correct_pair) stops earlier once its residuals stall at
 /// rounding).
@@ -106,16 +110,16 @@ impl<M: Model> Tracer<'_, M> {
     }
 
     /// Whether the smallest other margin at `prev` (the last of `points`)
-    /// is zero to [`SAME_EVENT`] and has fallen over the last
-    /// [`TREND_POINTS`] steps: a codimension-two point the curve crawls
-    /// towards (where its own condition is defined on a sliver that
-    /// narrows there: an interior extremum merging with its partner at a
-    /// departure that turns tangential, whose margin falls as the square of
-    /// the distance).
+    /// has fallen over the last [`TREND_POINTS`] steps to zero within
+    /// [`SAME_EVENT`], or to less than [`FALLEN`] of what it was: a
+    /// codimension-two point the curve runs into without reaching it (where
+    /// its own condition is defined on a sliver that narrows there: an
+    /// interior extremum merging with its partner at a departure that turns
+    /// tangential, whose margin falls as the square of the distance).
     fn falling_other(&self, points: &[Sample], prev: &Sample) -> bool {
         let first = points.len().saturating_sub(TREND_POINTS + 1);
         let before = points[first].other;
-        (0.0..=SAME_EVENT).contains(&prev.other) && prev.other < before
+        (0.0..=SAME_EVENT.max(FALLEN * before)).contains(&prev.other) && prev.other < before
     }
 
     /// The end of a curve that cannot go on from `prev` (the last of
