@@ -41,8 +41,8 @@ const CRAWL_STEPS: f64 = 100.0;
 const FALLEN: f64 = 1e-3;
 
 /// Newton iterations at most for a codimension-two point solved directly
-/// ([`Extended::correct_pair`](super::extended::Extended::correct_pair) stops earlier once its residuals stall at
-/// rounding).
+/// ([`Extended::correct_pair`](super::extended::Extended::correct_pair)
+/// stops earlier once its residuals stall at rounding).
 const PAIR_ITERATIONS: usize = 64;
 
 /// How many margins at most a codimension-two point is solved with in turn
@@ -161,11 +161,14 @@ impl<M: Model> Tracer<'_, M> {
 
     /// Why the curve has stalled, if it has: the last [`STALL_POINTS`]
     /// steps were all accepted at the smallest step only (the corrector
-    /// converges, slowly, on a system singular there), or together moved
+    /// converges, slowly, on a system singular there), together moved
     /// the parameters by less than the location tolerance (the curve runs
     /// through the switching points alone, as where an interior extremum
-    /// leaves its segment through an arrival that turns tangential). Either
-    /// way it would crawl on to the point limit; it ends there, at a
+    /// leaves its segment through an arrival that turns tangential), or
+    /// together covered less than [`CRAWL_STEPS`] smallest steps each
+    /// (every longer step fails, as where the curve's condition is defined
+    /// on a narrowing sliver: [`Self::falling_other`]). Any way it would
+    /// crawl on to the point limit; it ends there, at a
     /// codimension-two point if one is solved ([`Self::vanishing_other`]).
     pub(super) fn stalled(&self, points: &[Sample], at_min: usize) -> Option<String> {
         if at_min >= STALL_POINTS {
