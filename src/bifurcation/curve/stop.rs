@@ -49,6 +49,19 @@ const PAIR_ITERATIONS: usize = 64;
 /// ([`Tracer::pair_point`]).
 const PAIR_RESOLVES: usize = 3;
 
+/// Where the trend of the other margin is measured from: the first point
+/// with a finite margin among the last [`TREND_POINTS`] before the last of
+/// `points` (at the smallest step the margin's rounding, a few 1e-8 on a
+/// stick onset near a tangential arrival, is as large as its fall over one
+/// step). Shared by [`Tracer::vanishing_other`] and
+/// [`Tracer::falling_other`].
+fn trend_start(points: &[Sample]) -> Option<&Sample> {
+    let first = points.len().saturating_sub(TREND_POINTS + 1);
+    points[first..points.len().checked_sub(1)?]
+        .iter()
+        .find(|q| q.other.is_finite())
+}
+
 impl<M: Model> Tracer<'_, M> {
     /// Where the corrector fails even at the smallest step, whether the
     /// curve has run into a codimension-two point it cannot step past: the
@@ -74,13 +87,7 @@ impl<M: Model> Tracer<'_, M> {
         points: &[Sample],
         prev: &Sample,
     ) -> Option<(CurveEndReason, Sample)> {
-        // The trend over the last few steps: at the smallest step the
-        // margin's rounding (a few 1e-8 on a stick onset near a tangential
-        // arrival) is as large as its fall over one step.
-        let first = points.len().saturating_sub(TREND_POINTS + 1);
-        let before = points[first..points.len().checked_sub(1)?]
-            .iter()
-            .find(|q| q.other.is_finite())?;
+        let before = trend_start(points)?;
         let (o0, o1) = (before.other, prev.other);
         if !(o0.is_finite() && o1.is_finite() && o1 >= 0.0 && o1 < o0) {
             return None;
@@ -117,9 +124,9 @@ impl<M: Model> Tracer<'_, M> {
     /// interior extremum merging with its partner at a departure that turns
     /// tangential, whose margin falls as the square of the distance).
     fn falling_other(&self, points: &[Sample], prev: &Sample) -> bool {
-        let first = points.len().saturating_sub(TREND_POINTS + 1);
-        let before = points[first].other;
-        (0.0..=SAME_EVENT.max(FALLEN * before)).contains(&prev.other) && prev.other < before
+        trend_start(points).is_some_and(|b| {
+            (0.0..=SAME_EVENT.max(FALLEN * b.other)).contains(&prev.other) && prev.other < b.other
+        })
     }
 
     /// The end of a curve that cannot go on from `prev` (the last of
