@@ -253,6 +253,52 @@ fn max_mappings_limits_the_motions_traced() {
     );
 }
 
+/// `--probes K` sweeps across the lines' curves: every curve of the run
+/// without probes is traced again (same kind, motion and ends), and the
+/// probes add curves of bands no line crosses.
+#[test]
+fn probes_keep_the_lines_curves_and_add_more() {
+    let args = [
+        "curves", "--model", "paper", "--x", "W=3:4", "--y", "Q0=65:75", "--count", "10",
+        "--spread", "0", "--json",
+    ];
+    // The ends by place and reason (a codim-2 end's index into the list
+    // changes as points are added).
+    let key = |c: &Value| {
+        let end = |e: &Value| format!("{} {} {}", e["end"], e["W"], e["Q0"]);
+        format!(
+            "{} {} {} {} {}",
+            c["kind"],
+            c["structure"],
+            c["boundary"],
+            end(&c["from"]),
+            end(&c["to"])
+        )
+    };
+    let curves = |o: &Output| -> Vec<String> {
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let v: Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        v["curves"]
+            .as_array()
+            .expect("curves")
+            .iter()
+            .map(key)
+            .collect()
+    };
+    let plain = curves(&run(&args));
+    let mut probed_args = args.to_vec();
+    probed_args.extend(["--probes", "2"]);
+    let probed = curves(&run(&probed_args));
+    for c in &plain {
+        assert!(probed.contains(c), "{c} is lost with probes");
+    }
+    assert!(
+        probed.len() > plain.len(),
+        "{} curves either way",
+        plain.len()
+    );
+}
+
 /// A scene's free parameters are the plane's axes (its parameter set holds
 /// them alone, indexed by their place among them; until stop 22 `curves`
 /// took those places for the model's and refused `W` of every scene). Its

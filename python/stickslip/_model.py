@@ -208,6 +208,7 @@ class Model:
         count: Optional[int] = None,
         spread: Optional[int] = None,
         max_mappings: Optional[int] = None,
+        probes: Optional[int] = None,
         **fixed: Number,
     ) -> Curves:
         """The transition curves over the box ``x × y``, each side
@@ -221,7 +222,9 @@ class Model:
         ``count``: grid values of each line's sweep (default 100);
         ``spread``: extra seed lines each way (default 3);
         ``max_mappings``: the longest motion whose transitions are traced
-        (default 24; ``--max-mappings``)."""
+        (default 24; ``--max-mappings``); ``probes``: short sweeps across
+        each curve at this many places, finding the bands no line crosses
+        (default 4; 0 turns them off; ``--probes``)."""
         data = _native.curves(
             self.name,
             _pairs(fixed),
@@ -232,6 +235,7 @@ class Model:
             _count("count", count, 0),
             _count("spread", spread, 0),
             _count("max_mappings", max_mappings, 0),
+            _count("probes", probes, 0),
         )
         return Curves(json.loads(data))
 

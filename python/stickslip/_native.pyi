@@ -83,6 +83,7 @@ def curves(
     count: Optional[int] = None,
     spread: Optional[int] = None,
     max_mappings: Optional[int] = None,
+    probes: Optional[int] = None,
 ) -> str: ...
 def lyapunov(
     model: str,

@@ -227,6 +227,17 @@ def test_curves_max_mappings_agrees_with_the_cli(cli, paper):
     assert len(every) > len(few)
 
 
+def test_curves_probes_agree_with_the_cli(cli, paper):
+    args = ("--x", "W=3:4", "--y", "Q0=65:75", "--count", "10", "--spread", "0", "--json")
+    theirs = json.loads(ok(cli, "curves", *args, "--probes", "2"))
+    probed = paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0, probes=2)
+    assert probed.to_dict() == theirs
+    plain = paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0)
+    assert len(probed) > len(plain)
+    with pytest.raises(errors.InputError, match="probes"):
+        paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), probes=-1)
+
+
 # ---------------------------------------------------------------- lyapunov
 
 

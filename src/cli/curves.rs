@@ -56,6 +56,11 @@ pub struct CurvesArgs {
     /// many switching points each).
     #[arg(long, value_name = "M", default_value_t = CurvesSettings::default().max_mappings)]
     max_mappings: usize,
+    /// Short sweeps across every traced curve at this many places along it,
+    /// each new transition found there traced: the bands no line crosses
+    /// (a period-adding cascade between two curves). 0 turns them off.
+    #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().probes)]
+    probes: usize,
 }
 
 /// The curves as text or JSON, and the regime map.
@@ -125,6 +130,7 @@ impl WithModel for CurvesCmd {
             count: self.args.count,
             spread: self.args.spread,
             max_mappings: self.args.max_mappings,
+            probes: self.args.probes,
             ..CurvesSettings::default()
         };
         let found = curves_with::<M>(&base, &opts, &settings)?;

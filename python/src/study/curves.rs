@@ -47,11 +47,12 @@ impl Command for Curves {
 /// from, to)`), from the seed lines `seeds` (`(name, value)`: the sweep
 /// along the other parameter), with their crossings of the lines `at`;
 /// `count` grid values per line's sweep, `spread` extra lines each way,
-/// `max_mappings` the longest motion whose transitions are traced.
+/// `max_mappings` the longest motion whose transitions are traced,
+/// `probes` the short sweeps across each curve.
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None))]
+#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None))]
 pub fn curves(
     py: Python<'_>,
     model: &str,
@@ -63,6 +64,7 @@ pub fn curves(
     count: Option<usize>,
     spread: Option<usize>,
     max_mappings: Option<usize>,
+    probes: Option<usize>,
 ) -> PyResult<String> {
     let defaults = CurvesSettings::default();
     let cmd = Curves {
@@ -75,6 +77,7 @@ pub fn curves(
             count: count.unwrap_or(defaults.count),
             spread: spread.unwrap_or(defaults.spread),
             max_mappings: max_mappings.unwrap_or(defaults.max_mappings),
+            probes: probes.unwrap_or(defaults.probes),
             ..defaults
         },
     };

@@ -10,8 +10,13 @@
 //! parallel lines, the line halfway when a motion lives on one and not the
 //! other and no curve of that motion runs between them: an island or isola
 //! seen by one line only (at most `max_refine`, never closer than 1/64 of
-//! the span). What no line crosses stays unseen: an isola smaller than the
-//! spacing of the lines and away from every line is not found.
+//! the span); last, with `probes` > 0, short sweeps across every curve
+//! traced so far at that many places along it, reaching 1/64 of the span to
+//! each side: a band that opens where two curves cross, away from every
+//! line (a period-adding cascade between a grazing and a passable onset),
+//! is found where it touches a probed curve. What neither a line nor a
+//! probe crosses stays unseen: an isola smaller than the spacing of the
+//! lines and away from every line and curve is not found.
 
 use crate::bifurcation::curve::{crossings, trace, Curve, CurveEndReason, Line, Plane};
 use crate::model::Model;
@@ -26,8 +31,12 @@ use super::{CurveSet, CurveSummary, CurvesError, CurvesOptions, CurvesSettings, 
 /// (relative to the value, at least absolute).
 const ON_CURVE: f64 = 1e-7;
 
-/// Refinement lines are never closer than this fraction of the span.
+/// Refinement lines are never closer than this fraction of the span; a
+/// probe reaches this far to each side of its curve.
 const FINEST: f64 = 1.0 / 64.0;
+
+/// Grid values of a probe's sweep.
+const PROBE_COUNT: usize = 16;
 
 /// Everything found so far.
 pub(super) struct Cover<'a, M: Model> {
@@ -80,33 +89,25 @@ impl<'a, M: Model> Cover<'a, M> {
         }
     }
 
-    /// Sweep along `line` (once) and trace every transition found there
-    /// that no traced curve passes. Whether the line was new.
-    pub fn line(&mut self, line: Line) -> Result<bool, CurvesError> {
-        if self.sweeps.iter().any(|s| same_line(s.line, line)) {
-            return Ok(false);
+    /// The sweeps' settings: longer motions start no curve. Their branches
+    /// are followed one period doubling further (a transition past a
+    /// longer branch's end may lead to a traceable motion), and no further:
+    /// a cascade into chaos would follow branches of hundreds of mappings.
+    fn sweep_options(&self) -> SweepOptions {
+        SweepOptions {
+            max_mappings: self
+                .settings
+                .sweep
+                .max_mappings
+                .or(Some(self.settings.max_mappings.saturating_mul(2))),
+            ..self.settings.sweep
         }
-        let sw = sweep_line::<M>(
-            self.base,
-            &self.plane,
-            line,
-            self.settings.count,
-            // Longer motions start no curve. Their branches are followed one
-            // period doubling further (a transition past a longer branch's
-            // end may lead to a traceable motion), and no further: a
-            // cascade into chaos would follow branches of hundreds of
-            // mappings.
-            SweepOptions {
-                max_mappings: self
-                    .settings
-                    .sweep
-                    .max_mappings
-                    .or(Some(self.settings.max_mappings.saturating_mul(2))),
-                ..self.settings.sweep
-            },
-        )?;
+    }
+
+    /// Trace every start no traced curve passes.
+    fn trace_new(&mut self, starts: &[Start]) {
         let max = self.settings.max_mappings;
-        for start in sw.starts.iter().filter(|s| traceable(s, max)) {
+        for start in starts.iter().filter(|s| traceable(s, max)) {
             if self.on_curve(start) {
                 continue;
             }
@@ -124,6 +125,23 @@ impl<'a, M: Model> Cover<'a, M> {
                 self.curves.push(curve);
             }
         }
+    }
+
+    /// Sweep along `line` (once) and trace every transition found there
+    /// that no traced curve passes. Whether the line was new.
+    pub fn line(&mut self, line: Line) -> Result<bool, CurvesError> {
+        if self.sweeps.iter().any(|s| same_line(s.line, line)) {
+            return Ok(false);
+        }
+        let sw = sweep_line::<M>(
+            self.base,
+            &self.plane,
+            line,
+            None,
+            self.settings.count,
+            self.sweep_options(),
+        )?;
+        self.trace_new(&sw.starts);
         self.sweeps.push(sw);
         Ok(true)
     }
@@ -244,6 +262,34 @@ impl<'a, M: Model> Cover<'a, M> {
                 return;
             }
             budget -= 1;
+        }
+    }
+
+    /// A short sweep across every curve the lines traced, at `probes`
+    /// places spread along it, each transition found there traced unless a
+    /// traced curve passes it: what lies across a border where no line
+    /// crosses it (a band that opens between two curves where they cross,
+    /// such as a period-adding cascade between a grazing and a passable
+    /// onset). One round: the curves the probes trace are not probed in
+    /// turn (the bands between a cascade's bands, each of longer motions,
+    /// would follow in hundreds).
+    pub fn probe(&mut self) {
+        let lined = self.curves.len();
+        for next in 0..lined {
+            let places = probe_places(&self.plane, &self.curves[next], self.settings.probes);
+            for (line, range) in places {
+                let sw = sweep_line::<M>(
+                    self.base,
+                    &self.plane,
+                    line,
+                    Some(range),
+                    PROBE_COUNT,
+                    self.sweep_options(),
+                );
+                if let Ok(sw) = sw {
+                    self.trace_new(&sw.starts);
+                }
+            }
         }
     }
 
@@ -385,6 +431,46 @@ impl<'a, M: Model> Cover<'a, M> {
         };
         (set, curves)
     }
+}
+
+/// Where to probe across `curve`: `n` places evenly spread along its
+/// arclength (in units of the box's spans), each a line across the curve
+/// (vertical where the curve runs more horizontally) reaching [`FINEST`] of
+/// the span to each side, within the box.
+fn probe_places(plane: &Plane, curve: &Curve, n: usize) -> Vec<(Line, [f64; 2])> {
+    let [xl, xh] = plane.x_range;
+    let [yl, yh] = plane.y_range;
+    let (sx, sy) = (xh - xl, yh - yl);
+    let scaled: Vec<(f64, f64)> = curve.points.iter().map(|p| (p.x / sx, p.y / sy)).collect();
+    let mut along = vec![0.0];
+    for w in scaled.windows(2) {
+        let last = along[along.len() - 1];
+        along.push(last + (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1));
+    }
+    let total = along[along.len() - 1];
+    if scaled.len() < 2 || total.is_nan() || total <= 0.0 {
+        return Vec::new();
+    }
+    (0..n)
+        .filter_map(|k| {
+            let s = (k as f64 + 0.5) / n as f64 * total;
+            let i = along
+                .partition_point(|&a| a <= s)
+                .clamp(1, scaled.len() - 1)
+                - 1;
+            let (a, b) = (scaled[i], scaled[i + 1]);
+            let f = ((s - along[i]) / (along[i + 1] - along[i])).clamp(0.0, 1.0);
+            let (x, y) = ((a.0 + f * (b.0 - a.0)) * sx, (a.1 + f * (b.1 - a.1)) * sy);
+            let (line, lo, hi) = if (b.0 - a.0).abs() >= (b.1 - a.1).abs() {
+                let d = FINEST * sy;
+                (Line::X(x), (y - d).max(yl), (y + d).min(yh))
+            } else {
+                let d = FINEST * sx;
+                (Line::Y(y), (x - d).max(xl), (x + d).min(xh))
+            };
+            (lo < hi).then_some((line, [lo, hi]))
+        })
+        .collect()
 }
 
 /// The motions seen anywhere along a line (by name, without `^N`), of at

@@ -176,6 +176,9 @@ pub struct CurvesSettings {
     /// At most this many lines added between neighbouring lines whose
     /// motions differ in a way no curve between them explains.
     pub max_refine: usize,
+    /// Short sweeps across each curve the lines traced, at this many
+    /// places along it (what lies across a border no line crosses).
+    pub probes: usize,
     /// Transitions of motions of more mappings than this are not traced
     /// (the long cycles of period-adding cascades: thin bands whose curves
     /// cost a continuation of that many switching points each). The
@@ -195,6 +198,7 @@ impl Default for CurvesSettings {
             spread: 3,
             max_missing: 6,
             max_refine: 4,
+            probes: 0,
             max_mappings: 24,
             sweep: SweepOptions::default(),
             curve: CurveOptions {
@@ -257,5 +261,6 @@ pub fn traced<M: Model>(
     cover.spread();
     cover.missing();
     cover.refine();
+    cover.probe();
     Ok(cover.finish(opts))
 }

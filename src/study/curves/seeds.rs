@@ -58,19 +58,22 @@ pub(super) fn params_at<M: Model>(base: &M::Params, plane: &Plane, x: f64, y: f6
     p
 }
 
-/// Sweep along `line` over the box on `count` values and collect its starts.
+/// Sweep along `line` on `count` values over `range` of the swept
+/// parameter (`None`: across the whole box) and collect its starts.
 pub(super) fn sweep_line<M: Model>(
     base: &M::Params,
     plane: &Plane,
     line: Line,
+    range: Option<[f64; 2]>,
     count: usize,
     opts: SweepOptions,
 ) -> Result<LineSweep, SweepError> {
     // The swept parameter, its range, the fixed one.
-    let (swept, [lo, hi]) = match line {
+    let (swept, whole) = match line {
         Line::Y(_) => (plane.x, plane.x_range),
         Line::X(_) => (plane.y, plane.y_range),
     };
+    let [lo, hi] = range.unwrap_or(whole);
     let mut fixed = *base;
     match line {
         Line::Y(v) => fixed.set(plane.y, v),
