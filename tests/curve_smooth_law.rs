@@ -25,16 +25,19 @@
 //! (its end), the margins of `admissible::conditions` there, and the curve's
 //! exact crossing of the branch's line.
 
+use std::sync::OnceLock;
+
 use stickslip::bifurcation::curve::{
-    condition_at_transition, crossings, trace, Condition, CurveEndReason, CurveError, CurveOptions,
-    Line, Plane,
+    condition_at_transition, condition_scale, condition_value, crossings, trace, Condition, Curve,
+    CurveEndReason, CurveError, CurveOptions, Line, Plane,
 };
 use stickslip::bifurcation::{follow, ContinuationOptions, EndReason, Start, TransitionKind};
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
+use stickslip::models::coulomb::{self, Coulomb};
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::{conditions, ViolationKind};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
-use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
+use stickslip::study::curves::{curves_with, traced, CurveSet, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::ParamSet;
 
@@ -392,29 +395,42 @@ fn a_crawling_curve_ends_and_says_why() {
 }
 
 /// The Shaw case of `coulomb` (`V = 0`, `d = 0`, `mus = 0.45`,
-/// `muk = 0.3`): two grazing curves of `Sigma1` (of two motions) run into
-/// the point where the grazing minimum merges with a maximum at the
-/// departure of a pass that turns tangential. The corrector fails there
-/// (the tangent turns by 78.5°), and the end says that the pass's margin
-/// has fallen to under 1e-3 of itself and a codimension-two point lies
-/// ahead; both curves end at the same point.
-#[test]
-fn a_grazing_curve_into_a_tangential_pass_says_what_lies_ahead() {
-    use stickslip::models::coulomb::{self, Coulomb};
-    let base = coulomb::Params {
-        V: 0.0,
-        d: 0.0,
-        mus: 0.45,
-        muk: 0.3,
-        ..coulomb::Params::default()
-    };
-    let opts = CurvesOptions {
+/// `muk = 0.3`) over W = 0.3…1.2, Q0 = 0.5…2: the run, with its curves.
+fn shaw() -> &'static (CurveSet, Vec<Curve>, coulomb::Params) {
+    static RUN: OnceLock<(CurveSet, Vec<Curve>, coulomb::Params)> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let base = coulomb::Params {
+            V: 0.0,
+            d: 0.0,
+            mus: 0.45,
+            muk: 0.3,
+            ..coulomb::Params::default()
+        };
+        let (set, curves) =
+            traced::<Coulomb>(&base, &shaw_box(), &CurvesSettings::default()).expect("curves");
+        (set, curves, base)
+    })
+}
+
+fn shaw_box() -> CurvesOptions {
+    CurvesOptions {
         x: ("W".into(), [0.3, 1.2]),
         y: ("Q0".into(), [0.5, 2.0]),
         seeds: Vec::new(),
         at: Vec::new(),
-    };
-    let set = curves_with::<Coulomb>(&base, &opts, &CurvesSettings::default()).expect("curves");
+    }
+}
+
+/// On the Shaw case two grazing curves of `Sigma1` (of two motions) run
+/// into the point where the grazing minimum merges with a maximum at the
+/// departure of a pass that turns tangential. The condition can no longer
+/// be held to 1e-10 of its scale there (the extremum's gradient grows
+/// without bound), and the end says that the pass's margin has fallen to
+/// under 1e-2 of itself and a codimension-two point lies ahead; both
+/// curves end at the same point.
+#[test]
+fn a_grazing_curve_into_a_tangential_pass_says_what_lies_ahead() {
+    let (set, _, _) = shaw();
     let ahead: Vec<[f64; 2]> = set
         .curves
         .iter()
@@ -432,4 +448,39 @@ fn a_grazing_curve_into_a_tangential_pass_says_what_lies_ahead() {
         (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9,
         "{a:?} {b:?}"
     );
+}
+
+/// Every point of every Shaw-case curve holds its condition to 1e-10 of
+/// the condition's scale, evaluated afresh from the point's switching
+/// points (`condition_value`, `condition_scale`). Until stop 25 the
+/// corrector's tests (the Newton step, the residuals over their rows'
+/// gradients) accepted points near the merging extrema whose grazing
+/// margin was 5.2e-9 of its scale.
+#[test]
+fn every_shaw_curve_point_holds_its_condition() {
+    let (_, curves, base) = shaw();
+    let plane = shaw_box().plane::<Coulomb>(base).expect("a valid box");
+    let mut checked = 0;
+    for c in curves {
+        for q in &c.points {
+            let g = condition_value::<Coulomb>(base, &plane, c.structure.as_ref(), q, c.condition)
+                .expect("the condition is defined on the curve");
+            let mut p = *base;
+            p.set(plane.x, q.x);
+            p.set(plane.y, q.y);
+            let scale =
+                condition_scale::<Coulomb>(&p, c.condition, c.structure.as_ref(), &q.points);
+            assert!(
+                (g / scale).abs() <= 1e-10,
+                "{:?} of {:?} at ({}, {}): {:e} of its scale",
+                c.kind,
+                c.structure.as_ref().map(|s| s.len()),
+                q.x,
+                q.y,
+                g / scale
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked} points");
 }
