@@ -6,6 +6,7 @@
 #
 #   benches/curves-runs.sh            # all six (about 2 minutes)
 #   benches/curves-runs.sh s8box      # one of them, by name
+#   EXTRA="--probes 4" benches/curves-runs.sh fig11   # with more options
 #
 # The JSON of each run is kept in target/curves-runs/NAME.json.
 set -euo pipefail
@@ -23,7 +24,8 @@ run() {
     if [ -n "${ONLY:-}" ] && [ "$ONLY" != "$name" ]; then return; fi
     local s e
     s=$(date +%s.%N)
-    "$bin" curves "$@" --json >"$out/$name.json"
+    # shellcheck disable=SC2086
+    "$bin" curves "$@" ${EXTRA:-} --json >"$out/$name.json"
     e=$(date +%s.%N)
     python3 - "$out/$name.json" "$name" "$(echo "$e - $s" | bc)" <<'PY'
 import json, sys

@@ -89,7 +89,7 @@ const NEWTON_ITERATIONS: usize = 12;
 /// where an interior extremum merges with a departure turning tangential
 /// the gradient grows without bound and those tests passed points whose
 /// condition was 5e-9 of its scale.
-const HOLDS_TO: f64 = 1e-10;
+pub(super) const HOLDS_TO: f64 = 1e-10;
 
 impl<M: Model> Tracer<'_, M> {
     /// Everything watched at a corrected point `x` with tangent `t`.
@@ -125,7 +125,7 @@ impl<M: Model> Tracer<'_, M> {
     }
 
     /// `|g| / scale` of the curve's condition at `x` (NaN: infinite).
-    fn held(&mut self, x: &[f64]) -> f64 {
+    pub(super) fn held(&mut self, x: &[f64]) -> f64 {
         let p = self.sys.params(x);
         let pts = to_point(x).points;
         let g = self.sys.condition(x);
