@@ -23,20 +23,24 @@ use stickslip::ParamSet;
 
 const BAND: &str = "P_{0_11 2_11 0_11 2_11 0_11 2_11}^5";
 
-fn run(probes: usize) -> (CurveSet, Vec<Curve>) {
-    let opts = CurvesOptions {
+/// The box, with the one seed line Q0 = 0.45.
+fn box_opts() -> CurvesOptions {
+    CurvesOptions {
         x: ("W".into(), [0.55, 0.8]),
         y: ("Q0".into(), [0.3, 0.6]),
         seeds: vec![Line::Y(0.45)],
         at: Vec::new(),
-    };
+    }
+}
+
+fn run(probes: usize) -> (CurveSet, Vec<Curve>) {
     let settings = CurvesSettings {
         spread: 0,
         max_mappings: 8,
         probes,
         ..CurvesSettings::default()
     };
-    traced::<Coulomb>(&Params::default(), &opts, &settings).expect("the run runs")
+    traced::<Coulomb>(&Params::default(), &box_opts(), &settings).expect("the run runs")
 }
 
 #[test]
@@ -49,14 +53,7 @@ fn probes_find_a_cascade_band_no_line_crosses() {
 
     let (set, curves) = run(4);
     let base = Params::default();
-    let plane = CurvesOptions {
-        x: ("W".into(), [0.55, 0.8]),
-        y: ("Q0".into(), [0.3, 0.6]),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    }
-    .plane::<Coulomb>(&base)
-    .expect("a valid box");
+    let plane = box_opts().plane::<Coulomb>(&base).expect("a valid box");
     let mut p = base;
     p.set(plane.y, 0.39);
     let s = sweep::<Coulomb>(
