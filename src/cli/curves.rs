@@ -56,9 +56,10 @@ pub struct CurvesArgs {
     /// many switching points each).
     #[arg(long, value_name = "M", default_value_t = CurvesSettings::default().max_mappings)]
     max_mappings: usize,
-    /// Short sweeps across every traced curve at this many places along it,
-    /// each new transition found there traced: the bands no line crosses
-    /// (a period-adding cascade between two curves). 0 turns them off.
+    /// Short sweeps across every curve the lines traced, at this many places
+    /// along it, each new transition found there traced: the bands no line
+    /// crosses (a period-adding cascade between two curves). 0 (the
+    /// default) turns them off; each costs a sweep and the curves it finds.
     #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().probes)]
     probes: usize,
 }

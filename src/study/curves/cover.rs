@@ -459,7 +459,12 @@ fn probe_places(plane: &Plane, curve: &Curve, n: usize) -> Vec<(Line, [f64; 2])>
                 .clamp(1, scaled.len() - 1)
                 - 1;
             let (a, b) = (scaled[i], scaled[i + 1]);
-            let f = ((s - along[i]) / (along[i + 1] - along[i])).clamp(0.0, 1.0);
+            let len = along[i + 1] - along[i];
+            let f = if len > 0.0 {
+                ((s - along[i]) / len).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let (x, y) = ((a.0 + f * (b.0 - a.0)) * sx, (a.1 + f * (b.1 - a.1)) * sy);
             let (line, lo, hi) = if (b.0 - a.0).abs() >= (b.1 - a.1).abs() {
                 let d = FINEST * sy;
