@@ -35,6 +35,9 @@ const ON_CURVE: f64 = 1e-7;
 /// probe reaches this far to each side of its curve.
 const FINEST: f64 = 1.0 / 64.0;
 
+/// Two parallel lines closer than this fraction of the span are one.
+const SAME_LINE: f64 = 1e-12;
+
 /// Grid values of a probe's sweep.
 const PROBE_COUNT: usize = 16;
 
@@ -70,9 +73,14 @@ fn traceable(start: &Start, max: usize) -> bool {
     start.structure.as_ref().is_none_or(|s| s.len() <= max)
 }
 
-fn same_line(a: Line, b: Line) -> bool {
+/// Whether two lines are one: parallel, and within [`SAME_LINE`] of the
+/// box's span apart (the spread's middle line `lo + (hi − lo) / 2` and the
+/// default seed `(lo + hi) / 2` differ by rounding).
+fn same_line(plane: &Plane, a: Line, b: Line) -> bool {
+    let close = |u: f64, v: f64, [lo, hi]: [f64; 2]| (u - v).abs() <= SAME_LINE * (hi - lo);
     match (a, b) {
-        (Line::X(u), Line::X(v)) | (Line::Y(u), Line::Y(v)) => u == v,
+        (Line::X(u), Line::X(v)) => close(u, v, plane.x_range),
+        (Line::Y(u), Line::Y(v)) => close(u, v, plane.y_range),
         _ => false,
     }
 }
@@ -130,7 +138,11 @@ impl<'a, M: Model> Cover<'a, M> {
     /// Sweep along `line` (once) and trace every transition found there
     /// that no traced curve passes. Whether the line was new.
     pub fn line(&mut self, line: Line) -> Result<bool, CurvesError> {
-        if self.sweeps.iter().any(|s| same_line(s.line, line)) {
+        if self
+            .sweeps
+            .iter()
+            .any(|s| same_line(&self.plane, s.line, line))
+        {
             return Ok(false);
         }
         let sw = sweep_line::<M>(
