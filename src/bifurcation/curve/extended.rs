@@ -30,7 +30,7 @@ use crate::bifurcation::bordered::Correction;
 use crate::model::{Model, ParamSet};
 use crate::orbit::periodic::SwitchingPoint;
 
-use super::condition::Evaluator;
+use super::condition::{condition_scale, Evaluator};
 use super::Plane;
 
 /// A codimension-two point's equations hold when each residual is below this
@@ -189,6 +189,21 @@ impl<M: Model> Extended<M> {
         let p = self.params(x);
         self.load(x);
         self.eval.value(&p, &self.pts)
+    }
+
+    /// `|g| / scale` of the condition at `x` ([`condition_scale`]; NaN
+    /// counts as infinite), on the system's own switching-point buffer.
+    pub fn held(&mut self, x: &[f64]) -> f64 {
+        let g = self.condition(x);
+        let p = self.params(x);
+        let eval = &self.eval;
+        let scale = condition_scale::<M>(&p, eval.condition, eval.structure.as_ref(), &self.pts);
+        let r = (g / scale).abs();
+        if r.is_nan() {
+            f64::INFINITY
+        } else {
+            r
+        }
     }
 
     /// The second condition's value at `x` (NaN without one).

@@ -283,7 +283,7 @@ impl<M: Model> Tracer<'_, M> {
         // `HOLDS_TO` of its scale, and a Newton polish onto the curve does
         // not lower it (measured: 2.2e-9 on `stribeck8`). Such a point is no
         // point of the curve.
-        if self.held(&x) > HOLDS_TO {
+        if self.sys.held(&x) > HOLDS_TO {
             return None;
         }
         self.examine(x, prev.t.clone()).ok()

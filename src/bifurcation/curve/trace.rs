@@ -30,9 +30,7 @@ use crate::orbit::admissible::ConditionId;
 use crate::orbit::periodic::monodromy;
 use crate::orbit::stability::Stability;
 
-use super::condition::condition_scale;
 use super::extended::Extended;
-use super::start::to_point;
 use super::stop::PAIR_REACH;
 use super::{Condition, CurveEndReason, CurveOptions, Plane};
 use crate::bifurcation::locate::regula_falsi;
@@ -84,7 +82,7 @@ pub(super) struct Tracer<'a, M: Model> {
 const NEWTON_ITERATIONS: usize = 12;
 
 /// A point is accepted only where its condition holds to this fraction of
-/// the condition's scale ([`condition_scale`]). The corrector's own test
+/// the condition's scale ([`Extended::held`]). The corrector's own test
 /// is on the Newton step and the residuals over their rows' gradients;
 /// where an interior extremum merges with a departure turning tangential
 /// the gradient grows without bound and those tests passed points whose
@@ -122,21 +120,6 @@ impl<M: Model> Tracer<'_, M> {
             disc,
             stability: dp.map(|d| Stability::of(&d)),
         })
-    }
-
-    /// `|g| / scale` of the curve's condition at `x` (NaN: infinite).
-    pub(super) fn held(&mut self, x: &[f64]) -> f64 {
-        let p = self.sys.params(x);
-        let pts = to_point(x).points;
-        let g = self.sys.condition(x);
-        let eval = &self.sys.eval;
-        let scale = condition_scale::<M>(&p, eval.condition, eval.structure.as_ref(), &pts);
-        let r = (g / scale).abs();
-        if r.is_nan() {
-            f64::INFINITY
-        } else {
-            r
-        }
     }
 
     /// The corrected point at arclength `s` from `from` along its tangent.
@@ -460,7 +443,7 @@ impl<M: Model> Tracer<'_, M> {
                         ));
                     }
                     let smp = self.examine(x, t)?;
-                    let held = self.held(&smp.x);
+                    let held = self.sys.held(&smp.x);
                     if held > HOLDS_TO {
                         return Err(format!(
                             "the condition holds only to {held:.1e} of its scale there"
