@@ -169,7 +169,9 @@ fn worst_on_curve<M: Model>(base: &M::Params, plane: &Plane, c: &Curve) -> f64 {
                     _ => (e - dp).determinant(),
                 }
             }
-            Condition::RestGrazing { .. } => unreachable!(),
+            Condition::RestGrazing { .. } | Condition::NormalField { .. } => {
+                unreachable!("no curve of the paper model is traced on {:?}", c.condition)
+            }
         };
         worst = worst.max(g.abs() / scale);
     }

@@ -18,6 +18,8 @@
 //!   boundary: `v_b − max v` when the boundary bounds the domain above,
 //!   `min v − v_b` below. The domain is the neighbour of the boundary whose
 //!   margin is the smaller in magnitude at the curve's start.
+//! * `NormalField`: `±F_j` or `±DF_j` at one end of a flow segment
+//!   ([`normal_field_at`], an acceleration or its rate).
 
 use nalgebra::Matrix2;
 
@@ -53,6 +55,40 @@ pub(super) fn rest_margin<M: Model>(p: &M::Params, j: usize, k: usize) -> f64 {
     } else {
         -r.max_v - vb
     }
+}
+
+/// The normal field `F_j` (or its rate `DF_j` with `rate`) at the departure
+/// of flow segment `segment` of `steps` (or its arrival), signed into the
+/// domain at the departure and out of it at the arrival: positive where
+/// that end is transversal. NaN for a stick or out of range.
+pub(super) fn normal_field_at<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    points: &[SwitchingPoint],
+    segment: usize,
+    arrival: bool,
+    rate: bool,
+) -> f64 {
+    let m = steps.len();
+    if segment >= m || points.len() != m {
+        return f64::NAN;
+    }
+    let mi = M::INFO.mappings[steps[segment]];
+    let Some(j) = mi.domain else {
+        return f64::NAN;
+    };
+    let dom = M::INFO.domains[j];
+    // The phase of the last arrival is shifted by whole forcing periods:
+    // the field does not see it.
+    let (at, k) = if arrival {
+        (points[(segment + 1) % m], mi.to)
+    } else {
+        (points[segment], mi.from)
+    };
+    let [f, df] = M::normal_field(p, j, at.x, M::boundary_velocity(p, k), at.phase);
+    let above = dom.lower == Some(k);
+    let sign = if above != arrival { 1.0 } else { -1.0 };
+    sign * if rate { df } else { f }
 }
 
 /// The domains next to boundary `k`.
@@ -242,6 +278,11 @@ impl<M: Model> Evaluator<M> {
                     .unwrap_or(f64::NAN)
             }
             Condition::RestGrazing { boundary } => rest_margin::<M>(p, self.rest_domain, boundary),
+            Condition::NormalField {
+                segment,
+                arrival,
+                rate,
+            } => normal_field_at::<M>(p, &self.steps, points, segment, arrival, rate),
         }
     }
 
@@ -341,12 +382,17 @@ impl<M: Model> Evaluator<M> {
     /// A second evaluator of the same motion for condition `id` (a margin
     /// that vanishes with this one at a codimension-two point).
     pub fn companion(&self, id: ConditionId) -> Self {
-        let mut e = self.clone();
-        e.condition = Condition::Margin {
+        self.with(Condition::Margin {
             kind: id.0,
             segment: id.1,
             boundary: id.2,
-        };
+        })
+    }
+
+    /// An evaluator of the same motion for `condition`.
+    pub fn with(&self, condition: Condition) -> Self {
+        let mut e = self.clone();
+        e.condition = condition;
         e
     }
 }
@@ -378,6 +424,13 @@ pub fn condition_scale<M: Model>(
         Condition::RestGrazing { .. } => {
             let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
             v.max(l * w).max(1e-300)
+        }
+        // An acceleration, or its rate (over time: one more factor W).
+        Condition::NormalField { rate, .. } => {
+            let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
+            let s = M::static_bound(p).unwrap_or(0.0).abs();
+            let force = osc.amplitude.abs() + osc.stiffness.abs() * l + s + w * v;
+            (force * if rate { w.max(1.0) } else { 1.0 }).max(1e-300)
         }
         Condition::Margin { kind, .. } => match kind {
             ViolationKind::Duration => std::f64::consts::TAU,

@@ -77,6 +77,23 @@ pub enum Condition {
         /// The boundary grazed.
         boundary: usize,
     },
+    /// The normal field `F_j` (Eq. 10) at one end of a flow segment, into
+    /// its domain at the departure and out of it at the arrival, or its
+    /// rate `DF_j` along the flow (Eqs. 21–23), with the same sign. Both
+    /// vanish where an interior grazing of the segment merges into that end
+    /// as it turns tangential (near it `F ∝ DF²` along the grazing curve):
+    /// a codimension-two point the grazing curve runs into, solved with the
+    /// two as its conditions (the grazing margin is not smooth there). No
+    /// curve is traced on it: where `F` alone vanishes the end's own margin
+    /// (`Margin` of kind `Departure` or `Arrival`) is the condition.
+    NormalField {
+        /// Index of the flow mapping (in application order).
+        segment: usize,
+        /// At its arrival (else its departure).
+        arrival: bool,
+        /// The rate `DF_j` (else `F_j`).
+        rate: bool,
+    },
 }
 
 /// The parameter plane: which two parameters are free, and the box.

@@ -194,7 +194,7 @@ fn kind_of<M: Model>(
 ) -> TransitionKind {
     match condition {
         Condition::Eigen(k) => k,
-        Condition::RestGrazing { .. } => TransitionKind::Grazing,
+        Condition::RestGrazing { .. } | Condition::NormalField { .. } => TransitionKind::Grazing,
         Condition::Margin { kind, boundary, .. } => {
             let named = structure.and_then(|s| {
                 let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
@@ -311,7 +311,7 @@ pub fn trace<M: Model>(
     let boundary = match condition {
         Condition::Margin { boundary, .. } => boundary,
         Condition::RestGrazing { boundary } => Some(boundary),
-        Condition::Eigen(_) => None,
+        Condition::Eigen(_) | Condition::NormalField { .. } => None,
     };
     let forward = tracer.run(first.clone(), true);
     let make = |points: Vec<Sample>, ends: Vec<CurveEnd>, special: Vec<Special>| Curve {

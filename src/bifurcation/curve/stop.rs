@@ -7,7 +7,7 @@
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::TransitionKind;
-use crate::model::Model;
+use crate::model::{MappingKind, Model};
 use crate::orbit::admissible::{ConditionId, ViolationKind, SAME_EVENT};
 
 use super::trace::{Found, Sample, Tracer, HOLDS_TO};
@@ -111,6 +111,15 @@ impl<M: Model> Tracer<'_, M> {
         let reason = CurveEndReason::Codim2 { kind, boundary };
         let bound = PAIR_REACH * reach_plane + CODIM2_REACH * self.opts.min_step;
         if let Some(at) = self.pair_point(prev, bound) {
+            return Some((reason, at));
+        }
+        // Towards a tangential end of the grazed segment the margin that
+        // falls is that end's field, which goes as the square of the
+        // distance along the curve: extrapolated as such.
+        let (r0, r1) = (o0.sqrt(), o1.sqrt());
+        let reach_square = r1 * self.plane_distance(&prev.x, &before.x) / (r0 - r1);
+        let bound = PAIR_REACH * reach_square + CODIM2_REACH * self.opts.min_step;
+        if let Some(at) = self.tangency_point(prev, bound) {
             return Some((reason, at));
         }
         if reach > CODIM2_REACH * self.opts.min_step {
@@ -252,6 +261,77 @@ impl<M: Model> Tracer<'_, M> {
             last = Some(at);
         }
         None
+    }
+
+    /// Where the curve's interior grazing of a flow segment merges into
+    /// that segment's departure from (or arrival on) the grazed boundary as
+    /// it turns tangential: the normal field and its rate vanish there
+    /// together ([`Condition::NormalField`]), solved from `prev` with both
+    /// parameters free, both rows replacing the curve's own (the grazing
+    /// margin is not smooth at that point: near it the extremum's margin
+    /// goes as the square of the distance to the end). Accepted as
+    /// [`Self::pair_point`] accepts: converged, in the box, ahead of `prev`
+    /// within `bound`, every other condition holding there to
+    /// [`SAME_EVENT`]. The departure after a stick is left out: its field
+    /// is the constant `as − ak` (zero to rounding with `as = ak`, the
+    /// smooth laws' N-piece models, whose rate then is the departure's
+    /// margin and the point a higher order one).
+    pub(super) fn tangency_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
+        let Condition::Margin {
+            kind: ViolationKind::Interior,
+            segment,
+            boundary: Some(b),
+        } = self.sys.eval.condition
+        else {
+            return None;
+        };
+        let steps = &self.sys.eval.steps;
+        let m = steps.len();
+        let info = M::INFO;
+        let mi = info.mappings[*steps.get(segment)?];
+        let before = info.mappings[steps[(segment + m - 1) % m]];
+        let ends = [
+            (false, mi.from == b && before.kind != MappingKind::Stick),
+            (true, mi.to == b),
+        ];
+        let mut best: Option<Sample> = None;
+        for (arrival, applies) in ends {
+            if !applies || mi.domain.is_none() {
+                continue;
+            }
+            let field = |rate| Condition::NormalField {
+                segment,
+                arrival,
+                rate,
+            };
+            let own = self.sys.eval.with(field(false));
+            let own = std::mem::replace(&mut self.sys.eval, own);
+            self.sys.pair = Some(self.sys.eval.with(field(true)));
+            let mut x = prev.x.clone();
+            let done = self
+                .sys
+                .correct_pair(&mut x, self.opts.tolerance, PAIR_ITERATIONS);
+            self.sys.pair = None;
+            self.sys.eval = own;
+            if !matches!(done, Correction::Converged { .. }) || self.out_of_box(&x) {
+                continue;
+            }
+            let ahead = self.sys.dot_diff(&prev.t, &x, &prev.x);
+            if !(ahead > 0.0 && self.plane_distance(&x, &prev.x) <= bound) {
+                continue;
+            }
+            let Ok(at) = self.examine(x, prev.t.clone()) else {
+                continue;
+            };
+            if at.other < -SAME_EVENT {
+                continue;
+            }
+            let nearer = |a: &Sample| self.sys.dot_diff(&prev.t, &a.x, &prev.x);
+            if best.as_ref().is_none_or(|q| nearer(&at) < nearer(q)) {
+                best = Some(at);
+            }
+        }
+        best
     }
 
     /// [`Self::pair_point`] with the second condition `id`, whatever the
