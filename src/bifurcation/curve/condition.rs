@@ -413,6 +413,15 @@ pub fn condition_scale<M: Model>(
     for k in 0..M::INFO.boundaries.len() {
         v = v.max(M::boundary_velocity(p, k).abs());
     }
+    let length = || crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
+    // Velocities: the boundaries' and the motion's `L W`.
+    let velocity = || v.max(length() * w).max(1e-300);
+    // Forces and accelerations: the forcing, the spring over `L`, the
+    // static bound and the damping over the velocities.
+    let force = || {
+        let s = M::static_bound(p).unwrap_or(0.0).abs();
+        (osc.amplitude.abs() + osc.stiffness.abs() * length() + s + w * v).max(1e-300)
+    };
     match condition {
         Condition::Eigen(_) => {
             let steps = structure.map_or(&[][..], |s| s.steps());
@@ -421,28 +430,14 @@ pub fn condition_scale<M: Model>(
                 .ok()
                 .map_or(1.0, |dp| 1.0 + dp.trace().abs() + dp.determinant().abs())
         }
-        Condition::RestGrazing { .. } => {
-            let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
-            v.max(l * w).max(1e-300)
-        }
+        Condition::RestGrazing { .. } => velocity(),
         // An acceleration, or its rate (over time: one more factor W).
-        Condition::NormalField { rate, .. } => {
-            let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
-            let s = M::static_bound(p).unwrap_or(0.0).abs();
-            let force = osc.amplitude.abs() + osc.stiffness.abs() * l + s + w * v;
-            (force * if rate { w.max(1.0) } else { 1.0 }).max(1e-300)
-        }
+        Condition::NormalField { rate: false, .. } => force(),
+        Condition::NormalField { rate: true, .. } => force() * w.max(1.0),
         Condition::Margin { kind, .. } => match kind {
             ViolationKind::Duration => std::f64::consts::TAU,
-            ViolationKind::Interior => {
-                let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
-                v.max(l * w).max(1e-300)
-            }
-            _ => {
-                let l = crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);
-                let s = M::static_bound(p).unwrap_or(0.0).abs();
-                (osc.amplitude.abs() + osc.stiffness.abs() * l + s + w * v).max(1e-300)
-            }
+            ViolationKind::Interior => velocity(),
+            _ => force(),
         },
     }
 }
