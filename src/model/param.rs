@@ -171,6 +171,10 @@ pub struct Conditions<'a> {
     pub stick: Option<(f64, f64, f64)>,
 }
 
+/// The static bound may fall short of the kinetic level by this much
+/// relative to `1 + level` ([`check_conditions`]): rounding.
+const SAME_LEVEL: f64 = 1e-12;
+
 /// Check [`Conditions`] (called by generated `check`); `boundaries` are the
 /// model's, to name those out of order.
 pub fn check_conditions(boundaries: &[BoundaryInfo], c: Conditions) -> Result<(), ParamError> {
@@ -195,7 +199,11 @@ pub fn check_conditions(boundaries: &[BoundaryInfo], c: Conditions) -> Result<()
     }
     if let Some((bound, above, below)) = c.stick {
         for (kinetic, side) in [(above.abs(), "above"), (below.abs(), "below")] {
-            if bound.is_nan() || bound < kinetic {
+            // Equal up to rounding counts as equal: a smooth law's N-piece
+            // model has `as = ak` at the belt speed, its kinetic level
+            // evaluated from the pieces a few ulps either side of `as`
+            // (the build's check allows the same).
+            if bound.is_nan() || bound < kinetic - SAME_LEVEL * (1.0 + kinetic) {
                 return Err(ParamError::StaticBelowKinetic {
                     bound,
                     kinetic,

@@ -249,9 +249,25 @@ impl Plan {
         let sign = if p.above { 1.0 } else { -1.0 };
         let at = |u: f64| Velocity::Offset {
             base: belt,
-            offset: sign * if u == 0.0 { self.delta } else { u },
+            offset: sign * u,
         };
-        let fa = inst.lower(&law.kinetic, &ctx, Some(at(p.ua)), diags);
+        // At the belt speed the law's one-sided limit, extrapolated from
+        // `δ` and `2δ` off it (`2 f(V ± δ) − f(V ± 2δ)`, exact to `O(δ²)`):
+        // the law itself at `V ± δ` is off the limit by `δ f'`, 5.8e-11 on
+        // `stribeck` (`δ = 8e-12`, `f' = 7.3`), so the static bound
+        // (the limit, `as = ak` there) exceeded the piece's level at the
+        // belt speed and every departure from a stick set off with that
+        // acceleration instead of none.
+        let fa = if p.ua == 0.0 {
+            let near = inst.lower(&law.kinetic, &ctx, Some(at(self.delta)), diags);
+            let far = inst.lower(&law.kinetic, &ctx, Some(at(2.0 * self.delta)), diags);
+            let g = &mut inst.graph;
+            let two = g.constant(2.0);
+            let twice = g.mul(two, near);
+            g.sub(twice, far)
+        } else {
+            inst.lower(&law.kinetic, &ctx, Some(at(p.ua)), diags)
+        };
         let fb = inst.lower(&law.kinetic, &ctx, Some(at(p.ub)), diags);
         let g = &mut inst.graph;
         let rise = g.sub(fb, fa);
