@@ -116,3 +116,34 @@ fn params_reject_bad_values_with_typed_errors() {
     let ok = Params::from_pairs(info, &[("W", 3.7)]).expect("valid");
     assert_eq!(ok.W, 3.7);
 }
+
+/// A static bound equal to the kinetic level up to rounding is allowed
+/// (a smooth law's N-piece model has `as = ak` at the belt speed, its
+/// kinetic level a few ulps either side); one below it by more than 1e-12
+/// of `1 + level` is `StaticBelowKinetic`. And `stribeck::pl4`, whose
+/// pieces take the law's limit `mus g` exactly, is valid at its defaults.
+#[test]
+fn a_static_bound_equal_to_the_kinetic_level_up_to_rounding_is_allowed() {
+    use stickslip::models::coulomb::{Coulomb, Params as CoulombParams};
+    use stickslip::{ParamError, ParamSet};
+    let info = Coulomb::INFO;
+    let muk = 0.3;
+    for (mus, ok) in [
+        (muk, true),
+        (muk * (1.0 - 4.0 * f64::EPSILON), true),
+        (muk - 1e-13, true),
+        (muk - 1e-11, false),
+        (muk * (1.0 - 1e-9), false),
+    ] {
+        let r = CoulombParams::from_pairs(info, &[("muk", muk), ("mus", mus)]);
+        assert_eq!(r.is_ok(), ok, "mus = {mus:e}: {r:?}");
+        if !ok {
+            assert!(
+                matches!(r, Err(ParamError::StaticBelowKinetic { .. })),
+                "{r:?}"
+            );
+        }
+    }
+    let pl4 = stickslip::models::stribeck::pl4::Params::default();
+    assert!(pl4.check().is_ok());
+}
