@@ -5,6 +5,7 @@
 use serde::Serialize;
 use serde_json::{Map, Value};
 
+use crate::bifurcation::TransitionKind;
 use crate::study::sweep::{BifurcationSummary, BranchSample, BranchSummary, Sweep};
 
 /// The stretches of a branch along which its motion is stable or unstable.
@@ -80,13 +81,18 @@ pub fn runs(branch: &BranchSummary, bifurcations: &[BifurcationSummary]) -> Vec<
     out
 }
 
-/// The non-smooth transitions a branch can end at.
-const TRANSITION_ENDS: [&str; 4] = [
-    "grazing",
-    "stick_onset",
-    "stick_vanishing",
-    "passable_onset",
-];
+/// Whether a branch's end `reason` is a non-smooth transition (by
+/// [`TransitionKind::name`]).
+fn is_transition_end(reason: &str) -> bool {
+    [
+        TransitionKind::Grazing,
+        TransitionKind::StickOnset,
+        TransitionKind::StickVanishing,
+        TransitionKind::PassableOnset,
+    ]
+    .iter()
+    .any(|k| k.name() == reason)
+}
 
 /// A run made of the branch's end point alone, located at a non-smooth
 /// transition, joins the run next to it. At a grazing arrival `DP`
@@ -101,7 +107,7 @@ fn absorb_transition_ends(branch: &BranchSummary, out: &mut Vec<Run>) {
         branch
             .ends
             .iter()
-            .any(|e| TRANSITION_ENDS.contains(&e.reason.as_str()) && e.value == pts[i].value)
+            .any(|e| is_transition_end(&e.reason) && e.value == pts[i].value)
     };
     if out.len() >= 2 {
         let last = out.len() - 1;
