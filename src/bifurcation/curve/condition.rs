@@ -379,17 +379,8 @@ impl<M: Model> Evaluator<M> {
         }
     }
 
-    /// A second evaluator of the same motion for condition `id` (a margin
+    /// An evaluator of the same motion for `condition` (a second condition
     /// that vanishes with this one at a codimension-two point).
-    pub fn companion(&self, id: ConditionId) -> Self {
-        self.with(Condition::Margin {
-            kind: id.0,
-            segment: id.1,
-            boundary: id.2,
-        })
-    }
-
-    /// An evaluator of the same motion for `condition`.
     pub fn with(&self, condition: Condition) -> Self {
         let mut e = self.clone();
         e.condition = condition;

@@ -294,9 +294,11 @@ impl<M: Model> Tracer<'_, M> {
             (false, mi.from == b && before.kind != MappingKind::Stick),
             (true, mi.to == b),
         ];
+        // A flow segment only.
+        mi.domain?;
         let mut best: Option<Sample> = None;
         for (arrival, applies) in ends {
-            if !applies || mi.domain.is_none() {
+            if !applies {
                 continue;
             }
             let field = |rate| Condition::NormalField {
@@ -304,22 +306,9 @@ impl<M: Model> Tracer<'_, M> {
                 arrival,
                 rate,
             };
-            let own = self.sys.eval.with(field(false));
-            let own = std::mem::replace(&mut self.sys.eval, own);
-            self.sys.pair = Some(self.sys.eval.with(field(true)));
-            let mut x = prev.x.clone();
-            let done = self
-                .sys
-                .correct_pair(&mut x, self.opts.tolerance, PAIR_ITERATIONS);
-            self.sys.pair = None;
-            self.sys.eval = own;
-            if !matches!(done, Correction::Converged { .. }) || self.out_of_box(&x) {
+            let Some(x) = self.solve_pair(prev, Some(field(false)), field(true), bound) else {
                 continue;
-            }
-            let ahead = self.sys.dot_diff(&prev.t, &x, &prev.x);
-            if !(ahead > 0.0 && self.plane_distance(&x, &prev.x) <= bound) {
-                continue;
-            }
+            };
             let Ok(at) = self.examine(x, prev.t.clone()) else {
                 continue;
             };
@@ -334,6 +323,40 @@ impl<M: Model> Tracer<'_, M> {
         best
     }
 
+    /// The solution from `prev` of the mapping equations with `second` in
+    /// place of the border row (and `own` in place of the curve's
+    /// condition, if given; the curve's own is restored after), with both
+    /// parameters free ([`Extended::correct_pair`](super::extended::Extended::correct_pair)),
+    /// if it converges, lies in the box, and lies ahead of `prev` within
+    /// `bound` of it in the plane (each parameter over its span).
+    fn solve_pair(
+        &mut self,
+        prev: &Sample,
+        own: Option<Condition>,
+        second: Condition,
+        bound: f64,
+    ) -> Option<Vec<f64>> {
+        let saved = own.map(|c| {
+            let own = self.sys.eval.with(c);
+            std::mem::replace(&mut self.sys.eval, own)
+        });
+        self.sys.pair = Some(self.sys.eval.with(second));
+        let mut x = prev.x.clone();
+        let done = self
+            .sys
+            .correct_pair(&mut x, self.opts.tolerance, PAIR_ITERATIONS);
+        self.sys.pair = None;
+        if let Some(e) = saved {
+            self.sys.eval = e;
+        }
+        if !matches!(done, Correction::Converged { .. }) || self.out_of_box(&x) {
+            return None;
+        }
+        let ahead = self.sys.dot_diff(&prev.t, &x, &prev.x);
+        let far = self.plane_distance(&x, &prev.x);
+        (ahead > 0.0 && far <= bound).then_some(x)
+    }
+
     /// [`Self::pair_point`] with the second condition `id`, whatever the
     /// other margins there.
     fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {
@@ -343,20 +366,12 @@ impl<M: Model> Tracer<'_, M> {
         {
             return None;
         }
-        self.sys.pair = Some(self.sys.eval.companion(id));
-        let mut x = prev.x.clone();
-        let done = self
-            .sys
-            .correct_pair(&mut x, self.opts.tolerance, PAIR_ITERATIONS);
-        self.sys.pair = None;
-        if !matches!(done, Correction::Converged { .. }) || self.out_of_box(&x) {
-            return None;
-        }
-        let ahead = self.sys.dot_diff(&prev.t, &x, &prev.x);
-        let far = self.plane_distance(&x, &prev.x);
-        if !(ahead > 0.0 && far <= bound) {
-            return None;
-        }
+        let second = Condition::Margin {
+            kind: id.0,
+            segment: id.1,
+            boundary: id.2,
+        };
+        let x = self.solve_pair(prev, None, second, bound)?;
         // The pair's merit weighs each row by its gradient: where the
         // curve's own condition is steep (not smooth: an extremum merging
         // with a tangential departure) it may hold there only to more than
