@@ -221,10 +221,11 @@ fn a_capped_sweep_follows_no_longer_branch() {
     assert!(pd.born.is_empty(), "{pd:?}");
 }
 
-/// The curves run over the box where it crawled: every curve ends on the
-/// box's edge or at a codimension-two point but the one fold curve whose
-/// system turns singular, which ends there, named so, within its first
-/// hundred points (it crawled 2000 points at the smallest step).
+/// The curves run over the box where it crawled (a fold curve ran 2000
+/// points at the smallest step where its motion's excursion shrinks to
+/// nothing; it now ends at that codimension-two point:
+/// `a_fold_curve_whose_excursion_shrinks_to_nothing_…`): none is traced
+/// twice, none runs to 1000 points.
 #[test]
 fn the_curves_of_the_box_end_and_none_twice() {
     let set = box_curves([2.3, 2.6], [1.0, 3.0]);
@@ -590,16 +591,9 @@ fn field_by_hand(p: &stribeck8::Params, j: usize, x: f64, v: f64, phase: f64) ->
 #[test]
 fn a_grazing_curve_into_a_tangential_arrival_ends_where_the_field_and_its_rate_vanish() {
     let base = stribeck8::Params::default();
-    let opts = CurvesOptions {
-        x: ("W".into(), [2.3, 2.6]),
-        y: ("Q0".into(), [1.0, 3.0]),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    };
-    let (_, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).expect("run");
     let info = Stribeck8::INFO;
     let mut tangential = 0;
-    for c in &curves {
+    for c in s8box() {
         let (
             Condition::Margin {
                 kind: ViolationKind::Interior,
@@ -638,5 +632,152 @@ fn a_grazing_curve_into_a_tangential_arrival_ends_where_the_field_and_its_rate_v
     assert!(
         tangential >= 1,
         "no grazing curve ends at a tangential arrival"
+    );
+}
+
+/// The curves of `stribeck8` W = 2.3…2.6 × Q0 = 1…3, traced once.
+fn s8box() -> &'static [Curve] {
+    static RUN: OnceLock<Vec<Curve>> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let opts = CurvesOptions {
+            x: ("W".into(), [2.3, 2.6]),
+            y: ("Q0".into(), [1.0, 3.0]),
+            seeds: Vec::new(),
+            at: Vec::new(),
+        };
+        let base = stribeck8::Params::default();
+        traced::<Stribeck8>(&base, &opts, &CurvesSettings::default())
+            .expect("run")
+            .1
+    })
+}
+
+/// On `stribeck8` W = 2.3…2.6 × Q0 = 1…3 the period-3 motion of a fold
+/// curve (`… 6_56 7_66 6_66 7_67 8_77`) has an excursion `6_66` below
+/// `Sigma6` that shrinks to nothing as the curve runs on: its departure and
+/// arrival turn tangential together and the curve's system turns singular
+/// (it crawled, "the grazing margin of segment 2 on Sigma6 is 1.9e-8 there
+/// and falling", 2.6e-3 of the box short of its end). The end is where the
+/// reduced motion (`6_56 7_67 8_77`: the excursion removed, `7_66 … 7_67`
+/// merged) folds and grazes `Sigma6` at once, reported with the
+/// excursion's two switching points at the graze. Checked here, with the
+/// reduced motion built by hand: its mapping equations, its fold test
+/// function and its grazing margin vanish there, and the grazing curve of
+/// the reduced motion, traced on its own, meets a fold (a special point
+/// located along it) at the same point to 1e-8.
+#[test]
+fn a_fold_curve_whose_excursion_shrinks_to_nothing_ends_where_the_reduced_motion_grazes() {
+    let base = stribeck8::Params::default();
+    let info = Stribeck8::INFO;
+    let curves = s8box();
+    let mut found = 0;
+    for c in curves {
+        let (Condition::Eigen(TransitionKind::Fold), Some(s)) = (c.condition, &c.structure) else {
+            continue;
+        };
+        for e in c
+            .ends
+            .iter()
+            .filter(|e| matches!(e.reason, CurveEndReason::Codim2 { .. }))
+        {
+            let pts = &e.at.points;
+            let m = pts.len();
+            let same = |a: usize, b: usize| {
+                (pts[a].x - pts[b].x).abs() <= 1e-12 && (pts[a].phase - pts[b].phase).abs() <= 1e-12
+            };
+            let Some(k) = (1..m - 1).find(|&k| same(k, k + 1)) else {
+                continue;
+            };
+            let steps = s.steps();
+            let (before, excursion, after) = (
+                info.mappings[steps[k - 1]],
+                info.mappings[steps[k]],
+                info.mappings[steps[k + 1]],
+            );
+            let b = excursion.from;
+            assert_eq!(excursion.to, b, "{}", excursion.name);
+            assert_eq!(before.domain, after.domain);
+            // The reduced motion, by hand.
+            let merged = info
+                .mappings
+                .iter()
+                .position(|q| {
+                    q.domain == before.domain && q.from == before.from && q.to == after.to
+                })
+                .expect("the merged mapping");
+            let mut reduced_steps = steps[..k - 1].to_vec();
+            reduced_steps.push(merged);
+            reduced_steps.extend_from_slice(&steps[k + 2..]);
+            let reduced = Structure::from_indices(info, &reduced_steps, s.periods()).unwrap();
+            let mut reduced_points = pts[..k].to_vec();
+            reduced_points.extend_from_slice(&pts[k + 2..]);
+            let point = CurvePoint {
+                x: e.at.x,
+                y: e.at.y,
+                points: reduced_points.clone(),
+            };
+            let p = params(e.at.x, e.at.y);
+            // Both motions' mapping equations hold there (the excursion's
+            // of zero length).
+            let shift = std::f64::consts::TAU * s.periods() as f64;
+            for (steps, q) in [(steps, &pts[..]), (&reduced_steps[..], &reduced_points[..])] {
+                for (i, &step) in steps.iter().enumerate() {
+                    let (a, z) = (q[i], q.get(i + 1).copied());
+                    let z = z.unwrap_or(stickslip::orbit::periodic::SwitchingPoint {
+                        x: q[0].x,
+                        phase: q[0].phase + shift,
+                    });
+                    let r = Stribeck8::residual(&p, step, a.x, a.phase, z.x, z.phase);
+                    assert!(r.norm() <= 1e-10, "mapping {i} of {}: {r:?}", steps.len());
+                }
+            }
+            for condition in [
+                Condition::Eigen(TransitionKind::Fold),
+                Condition::Margin {
+                    kind: ViolationKind::Interior,
+                    segment: k - 1,
+                    boundary: Some(b),
+                },
+            ] {
+                let g = condition_value::<Stribeck8>(
+                    &base,
+                    &plane(),
+                    Some(&reduced),
+                    &point,
+                    condition,
+                )
+                .expect("evaluable");
+                let scale =
+                    condition_scale::<Stribeck8>(&p, condition, Some(&reduced), &point.points);
+                assert!(
+                    (g / scale).abs() <= 1e-10,
+                    "{condition:?}: {g:e} of {scale:e}"
+                );
+            }
+            // Independently: the reduced motion's grazing curve of that
+            // boundary meets a fold there.
+            let canonical = reduced.canonical(info).0;
+            let met = curves.iter().any(|d| {
+                d.structure
+                    .as_ref()
+                    .is_some_and(|t| t.canonical(info).0 == canonical)
+                    && d.boundary == Some(b)
+                    && d.special.iter().any(|sp| {
+                        sp.kind == TransitionKind::Fold
+                            && (sp.at.x - e.at.x).abs() <= 1e-8
+                            && (sp.at.y - e.at.y).abs() <= 1e-8
+                    })
+            });
+            assert!(
+                met,
+                "no grazing curve of the reduced motion meets a fold at {:?}",
+                (e.at.x, e.at.y)
+            );
+            found += 1;
+        }
+    }
+    assert!(
+        found >= 1,
+        "no fold curve ends where its excursion vanishes"
     );
 }

@@ -106,6 +106,11 @@ impl<M: Model> Extended<M> {
         }
     }
 
+    /// The parameters the plane's two are set in.
+    pub(super) fn base(&self) -> &M::Params {
+        &self.base
+    }
+
     /// The number of unknowns `2m + 2`.
     pub fn len(&self) -> usize {
         self.n

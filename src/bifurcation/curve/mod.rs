@@ -31,6 +31,9 @@
 //!   failure at the smallest step, or at the point limit. Along a margin
 //!   curve the sign changes of `det(I − DP)` and `det(I + DP)` are located
 //!   as [`Special`] points (a fold or period-doubling curve met).
+//! * `excursion`: the end of a curve whose motion loses an excursion (a
+//!   segment from a boundary back to it, shrinking to nothing), solved on
+//!   the reduced motion, where the merged segment touches the boundary.
 //! * [`crossings`]: each crossing of a line solved with the line's
 //!   parameter fixed.
 //! * [`condition_at_transition`]: the condition to trace from a transition
@@ -38,6 +41,7 @@
 
 mod condition;
 mod crossing;
+mod excursion;
 pub mod extended;
 mod start;
 mod stop;

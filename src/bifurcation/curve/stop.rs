@@ -1,8 +1,11 @@
 //! How a curve that cannot go on ends: where its corrector fails at the
 //! smallest step or it stalls (singular at the point, no headway in the
 //! plane, or crawling), at a codimension-two point ahead if one is solved
-//! directly with the other margin that falls ([`Tracer::pair_point`]), else
-//! as a corrector failure that says why.
+//! directly: with the other margin that falls ([`Tracer::pair_point`]), at
+//! a tangential end of the grazed segment ([`Tracer::tangency_point`]), or
+//! on the reduced motion where an excursion shrinks to nothing
+//! ([`Tracer::excursion_point`]); else as a corrector failure that says
+//! why.
 
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::continuation::transition_kind;
@@ -46,7 +49,7 @@ const FALLEN: f64 = 1e-2;
 /// Newton iterations at most for a codimension-two point solved directly
 /// ([`Extended::correct_pair`](super::extended::Extended::correct_pair)
 /// stops earlier once its residuals stall at rounding).
-const PAIR_ITERATIONS: usize = 64;
+pub(super) const PAIR_ITERATIONS: usize = 64;
 
 /// How many margins at most a codimension-two point is solved with in turn
 /// ([`Tracer::pair_point`]).
@@ -81,7 +84,10 @@ impl<M: Model> Tracer<'_, M> {
     /// ([`Self::pair_point`]), if that converges ahead of `prev`, in the
     /// plane within [`PAIR_REACH`] times the linear extrapolation of the
     /// margin along the last [`TREND_POINTS`] steps (plus [`CODIM2_REACH`]
-    /// smallest steps);
+    /// smallest steps); else, within [`PAIR_REACH`] times its extrapolation
+    /// as the square of the distance, at a tangential end of the grazed
+    /// segment ([`Self::tangency_point`]) or where an excursion of the
+    /// motion vanishes ([`Self::excursion_point`]);
     /// otherwise `prev` is the end if that extrapolation (in the scaled
     /// metric) reaches zero within [`CODIM2_REACH`] smallest steps. `None`:
     /// a plain failure.
@@ -120,6 +126,9 @@ impl<M: Model> Tracer<'_, M> {
         let reach_square = r1 * self.plane_distance(&prev.x, &before.x) / (r0 - r1);
         let bound = PAIR_REACH * reach_square + CODIM2_REACH * self.opts.min_step;
         if let Some(at) = self.tangency_point(prev, bound) {
+            return Some((reason, at));
+        }
+        if let Some(at) = self.excursion_point(prev, bound) {
             return Some((reason, at));
         }
         if reach > CODIM2_REACH * self.opts.min_step {

@@ -1,0 +1,300 @@
+//! A curve whose motion loses an excursion: one flow segment that leaves a
+//! boundary and returns to it (`j_ββ`) between two segments it splits (two
+//! flows of one domain, or two sticks on that boundary) shrinks to nothing
+//! as the curve runs on. Its departure and arrival turn tangential
+//! together, its arrival equation has a double root in the limit, and the
+//! curve's own system turns singular: the curve crawls short of the point.
+//! There the motion is the *reduced* one (the excursion removed, its two
+//! neighbours merged into one segment) touching the boundary inside that
+//! merged segment: a flow's velocity extremum on it (the reduced
+//! structure's grazing), a stick's `Fnf` extremum on `±as` (its stick
+//! vanishing). So the end is solved on the reduced structure, with the
+//! curve's condition carried over and the merged segment's margin, and
+//! reported with the excursion's two switching points both at the graze (a
+//! segment of zero length solves its mapping equation exactly).
+//!
+//! The flows of the smooth laws' N-piece models are continuous across their
+//! velocity boundaries, and an eigenvalue test function of the motion tends
+//! to the reduced motion's at the end. Measured on `stribeck::pl4`
+//! (`W = 0.5…3 × Q0 = 1…12`): three of the four ends so found lie within
+//! 1e-10 of a codimension-two point that other curves of the run locate
+//! independently (a period-doubling curve meeting a stick-vanishing one,
+//! two grazing curves meeting a fold and a period-doubling curve).
+
+use crate::bifurcation::bordered::Correction;
+use crate::model::{MappingInfo, MappingKind, Model};
+use crate::orbit::admissible::{ViolationKind, SAME_EVENT};
+use crate::orbit::extrema::SegmentFlow;
+use crate::orbit::structure::Structure;
+
+use super::start::{system, to_point};
+use super::stop::PAIR_ITERATIONS;
+use super::trace::{Sample, Tracer, HOLDS_TO};
+use super::Condition;
+
+/// An excursion shorter than this (in `W t`) may be shrinking to nothing
+/// (where the curve cannot go on, which is what this is tried for). One
+/// from a stick on a smooth law's model (`as = ak`: it leaves with no
+/// acceleration) is still 1.1e-2 long on `stribeck8` where its curve
+/// crawls.
+const SHORT: f64 = 1e-1;
+
+/// One excursion of a structure of `m` mappings: the segment after
+/// `before` leaves boundary `boundary` and returns to it, between `before`
+/// and the segment after it, two flows of one domain or two sticks on
+/// `boundary`, which merge into mapping `merged`.
+#[derive(Clone, Copy, Debug)]
+struct Excursion {
+    before: usize,
+    boundary: usize,
+    merged: usize,
+    /// Between two sticks (else two flows).
+    stick: bool,
+}
+
+/// The excursions of `steps` shorter than [`SHORT`] at `x`, shortest first.
+fn excursions<M: Model>(steps: &[usize], shift: f64, x: &[f64]) -> Vec<Excursion> {
+    let m = steps.len();
+    let info = M::INFO;
+    let mut out: Vec<(f64, Excursion)> = Vec::new();
+    if m < 3 {
+        return Vec::new();
+    }
+    for k in 0..m {
+        let mi = info.mappings[steps[k]];
+        let (before, after) = ((k + m - 1) % m, (k + 1) % m);
+        let (mb, ma) = (info.mappings[steps[before]], info.mappings[steps[after]]);
+        if mi.domain.is_none() || mi.from != mi.to || mb.to != mi.from || ma.from != mi.from {
+            continue;
+        }
+        let stick = mb.kind == MappingKind::Stick;
+        let merged = if stick {
+            (ma.kind == MappingKind::Stick).then_some(steps[before])
+        } else {
+            let flow = |q: &MappingInfo| q.kind != MappingKind::Stick && q.domain == mb.domain;
+            (flow(&ma) && mb.domain.is_some())
+                .then(|| {
+                    info.mappings
+                        .iter()
+                        .position(|q| flow(q) && q.from == mb.from && q.to == ma.to)
+                })
+                .flatten()
+        };
+        let Some(merged) = merged else {
+            continue;
+        };
+        let end = if after == 0 {
+            x[1] + shift
+        } else {
+            x[2 * after + 1]
+        };
+        let length = end - x[2 * k + 1];
+        if length.is_finite() && length < SHORT {
+            let e = Excursion {
+                before,
+                boundary: mi.from,
+                merged,
+                stick,
+            };
+            out.push((length, e));
+        }
+    }
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out.into_iter().map(|(_, e)| e).collect()
+}
+
+/// The curve's condition carried over to the reduced structure, whose
+/// segment 0 is the merged one and whose segment `i ≥ 1` is the motion's
+/// `(before + 2 + i) mod m`; `None` for a condition of the excursion or of
+/// its neighbours but their outer ends.
+fn carried(condition: Condition, e: &Excursion, m: usize) -> Option<Condition> {
+    match condition {
+        Condition::Eigen(_) => Some(condition),
+        Condition::Margin {
+            kind,
+            segment,
+            boundary,
+        } => {
+            let r = (segment + m - e.before) % m;
+            let segment = match (r, kind) {
+                (0, ViolationKind::Departure) | (2, ViolationKind::Arrival) => 0,
+                (0..=2, _) => return None,
+                _ => r - 2,
+            };
+            Some(Condition::Margin {
+                kind,
+                segment,
+                boundary,
+            })
+        }
+        Condition::RestGrazing { .. } | Condition::NormalField { .. } => None,
+    }
+}
+
+impl<M: Model> Tracer<'_, M> {
+    /// Where the curve's motion loses an excursion shrinking to nothing
+    /// (see the module): solved from `prev` on the reduced structure with
+    /// the curve's condition and the merged segment's interior margin on
+    /// the excursion's boundary, both parameters free. Accepted as
+    /// [`Self::pair_point`] accepts: converged, in the box, ahead of `prev`
+    /// in the plane within `bound`, the condition held there to
+    /// [`HOLDS_TO`] of its scale, and every other condition of the reduced
+    /// motion holding to [`SAME_EVENT`]. Returned in the curve's unknowns,
+    /// the excursion's two switching points at the graze.
+    pub(super) fn excursion_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
+        let steps = self.sys.eval.steps.clone();
+        let shift = self.sys.eval.shift;
+        let periods = self.sys.eval.structure.as_ref()?.periods();
+        let condition = self.sys.eval.condition;
+        excursions::<M>(&steps, shift, &prev.x)
+            .into_iter()
+            .find_map(|e| self.reduced_point(prev, bound, &steps, shift, periods, condition, &e))
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn reduced_point(
+        &mut self,
+        prev: &Sample,
+        bound: f64,
+        steps: &[usize],
+        shift: f64,
+        periods: u32,
+        condition: Condition,
+        e: &Excursion,
+    ) -> Option<Sample> {
+        let m = steps.len();
+        let n = prev.x.len();
+        let own = carried(condition, e, m)?;
+        // The motion rotated to start at `before`, then the excursion and
+        // its arrival's point dropped.
+        let rotated = |i: usize| {
+            let j = (e.before + i) % m;
+            let wrap = if e.before + i >= m { shift } else { 0.0 };
+            (prev.x[2 * j], prev.x[2 * j + 1] + wrap)
+        };
+        let mut reduced_steps = vec![e.merged];
+        let mut y = Vec::with_capacity(n - 4);
+        let (x0, p0) = rotated(0);
+        y.extend([x0, p0]);
+        for i in 3..m {
+            reduced_steps.push(steps[(e.before + i) % m]);
+            let (xi, pi) = rotated(i);
+            y.extend([xi, pi]);
+        }
+        y.extend([prev.x[n - 2], prev.x[n - 1]]);
+        let structure = Structure::from_indices(M::INFO, &reduced_steps, periods).ok()?;
+        let mut sys = system::<M>(
+            self.sys.base(),
+            &self.plane,
+            Some(&structure),
+            &to_point(&y),
+            own,
+        )
+        .ok()?;
+        // The merged segment touches the boundary: a flow's velocity
+        // extremum on it, a stick's `Fnf` extremum on `±as`.
+        sys.pair = Some(sys.eval.with(Condition::Margin {
+            kind: if e.stick {
+                ViolationKind::StickEnd
+            } else {
+                ViolationKind::Interior
+            },
+            segment: 0,
+            boundary: Some(e.boundary),
+        }));
+        let done = sys.correct_pair(&mut y, self.opts.tolerance, PAIR_ITERATIONS);
+        sys.pair = None;
+        if !matches!(done, Correction::Converged { .. })
+            || self.out_of_box(&y)
+            || sys.held(&y) > HOLDS_TO
+        {
+            return None;
+        }
+        // Ahead of `prev` in the plane, within `bound`.
+        let k = y.len();
+        let spans = self.sys.spans();
+        let ahead = (0..2)
+            .map(|a| (y[k - 2 + a] - prev.x[n - 2 + a]) * prev.t[n - 2 + a] / (spans[a] * spans[a]))
+            .sum::<f64>();
+        let plane = [prev.x[n - 2], prev.x[n - 1]];
+        let far = self.plane_distance(&y[k - 2..], &plane);
+        if !(ahead > 0.0 && far <= bound) {
+            return None;
+        }
+        // Every other condition of the reduced motion holds there.
+        let mut reduced = Tracer {
+            sys,
+            opts: self.opts,
+            plane: self.plane,
+        };
+        let at = reduced.examine(y.clone(), vec![0.0; k]).ok()?;
+        if at.other < -SAME_EVENT {
+            return None;
+        }
+        // The graze, nearest the excursion's departure at `prev`.
+        let p = reduced.sys.params(&y);
+        let near = rotated(1).1;
+        let end = if k > 4 { y[3] } else { y[1] + shift };
+        let (xg, pg) = graze::<M>(&p, e, [y[0], y[1]], end, near)?;
+        // Back to the curve's unknowns: rotated index `i` is the motion's
+        // `(before + i) mod m`.
+        let mut rot = Vec::with_capacity(n);
+        rot.extend([y[0], y[1], xg, pg, xg, pg]);
+        rot.extend_from_slice(&y[2..k - 2]);
+        let mut x = vec![0.0; n];
+        for i in 0..m {
+            let j = (e.before + i) % m;
+            let wrap = if e.before + i >= m { shift } else { 0.0 };
+            x[2 * j] = rot[2 * i];
+            x[2 * j + 1] = rot[2 * i + 1] - wrap;
+        }
+        x[n - 2] = y[k - 2];
+        x[n - 1] = y[k - 1];
+        self.examine(x, prev.t.clone()).ok()
+    }
+}
+
+/// Where the merged segment of `e` from `(x, φ)` = `start` to phase `end`
+/// touches the excursion's boundary: a flow's velocity extremum, a stick's
+/// extremum of `Fnf` (`sin φ* = −c v_s / (A0 W)`, as
+/// `orbit::admissible`'s stick margin); the one nearest phase `near`.
+fn graze<M: Model>(
+    p: &M::Params,
+    e: &Excursion,
+    start: [f64; 2],
+    end: f64,
+    near: f64,
+) -> Option<(f64, f64)> {
+    let osc = M::oscillator(p);
+    let v0 = M::boundary_velocity(p, e.boundary);
+    let mut best: Option<(f64, f64)> = None;
+    let mut take = |x: f64, phase: f64| {
+        if best.is_none_or(|b: (f64, f64)| (phase - near).abs() < (b.1 - near).abs()) {
+            best = Some((x, phase));
+        }
+    };
+    if e.stick {
+        let s = -osc.stiffness * v0 / (osc.amplitude * osc.frequency);
+        if s.abs().partial_cmp(&1.0) != Some(std::cmp::Ordering::Less) {
+            return None;
+        }
+        let tau = std::f64::consts::TAU;
+        for root in [s.asin(), std::f64::consts::PI - s.asin()] {
+            let phase = root + ((near - root) / tau).round() * tau;
+            if phase > start[1] && phase < end {
+                take(start[0] + v0 * (phase - start[1]) / osc.frequency, phase);
+            }
+        }
+    } else {
+        let mi = M::INFO.mappings[e.merged];
+        let flow = SegmentFlow::new(
+            osc,
+            M::coefficients(p, mi.domain?),
+            start[0],
+            M::boundary_velocity(p, mi.from),
+            start[1],
+        )?;
+        flow.acceleration_zeros(start[1], end, |_| false, |z| take(z.state.x, z.phase));
+    }
+    best
+}
