@@ -13,16 +13,26 @@
 //! reported with the excursion's two switching points both at the graze (a
 //! segment of zero length solves its mapping equation exactly).
 //!
+//! Where the reduced motion is two equal halves `T T`, the motion is one
+//! born at `T`'s period doubling (its second half's stick or excursion
+//! touching there too) and the reduced system is singular (`T T` has a
+//! branch point, both halves' margins vanish together): the end is solved
+//! on `T` with its period-doubling test function and its merged segment
+//! touching, then doubled. On `stribeck8` W = 0.5…3 × Q0 = 1…12 a fold
+//! and a stick-vanishing curve of `T'T` (`T'` with its stick split by an
+//! excursion) both end so at the point where `T`'s period-doubling and
+//! stick-vanishing curves meet.
+//!
 //! The flows of the smooth laws' N-piece models are continuous across their
 //! velocity boundaries, and an eigenvalue test function of the motion tends
-//! to the reduced motion's at the end. Measured on `stribeck::pl4`
-//! (`W = 0.5…3 × Q0 = 1…12`): three of the four ends so found lie within
-//! 1e-10 of a codimension-two point that other curves of the run locate
-//! independently (a period-doubling curve meeting a stick-vanishing one,
-//! two grazing curves meeting a fold and a period-doubling curve).
+//! to the reduced motion's at the end. Measured on `stribeck::pl4` and
+//! `stribeck8` (`README`, "Vanishing excursions"): ten of the eleven ends
+//! so found lie within 1e-9 of a codimension-two point that other curves
+//! locate independently in the same run without this solve.
 
 use crate::bifurcation::bordered::Correction;
-use crate::model::{MappingInfo, MappingKind, Model};
+use crate::bifurcation::TransitionKind;
+use crate::model::{MappingInfo, MappingKind, Model, ParamSet};
 use crate::orbit::admissible::{ViolationKind, SAME_EVENT};
 use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::structure::Structure;
@@ -42,7 +52,8 @@ const SHORT: f64 = 1e-1;
 /// One excursion of a structure of `m` mappings: the segment after
 /// `before` leaves boundary `boundary` and returns to it, between `before`
 /// and the segment after it, two flows of one domain or two sticks on
-/// `boundary`, which merge into mapping `merged`.
+/// `boundary`, which merge into mapping `merged` (for two sticks, the
+/// second: the merged stick leaves as it does).
 #[derive(Clone, Copy, Debug)]
 struct Excursion {
     before: usize,
@@ -69,7 +80,7 @@ fn excursions<M: Model>(steps: &[usize], shift: f64, x: &[f64]) -> Vec<Excursion
         }
         let stick = mb.kind == MappingKind::Stick;
         let merged = if stick {
-            (ma.kind == MappingKind::Stick).then_some(steps[before])
+            (ma.kind == MappingKind::Stick).then_some(steps[after])
         } else {
             let flow = |q: &MappingInfo| q.kind != MappingKind::Stick && q.domain == mb.domain;
             (flow(&ma) && mb.domain.is_some())
@@ -182,18 +193,9 @@ impl<M: Model> Tracer<'_, M> {
             y.extend([xi, pi]);
         }
         y.extend([prev.x[n - 2], prev.x[n - 1]]);
-        let structure = Structure::from_indices(M::INFO, &reduced_steps, periods).ok()?;
-        let mut sys = system::<M>(
-            self.sys.base(),
-            &self.plane,
-            Some(&structure),
-            &to_point(&y),
-            own,
-        )
-        .ok()?;
         // The merged segment touches the boundary: a flow's velocity
         // extremum on it, a stick's `Fnf` extremum on `±as`.
-        sys.pair = Some(sys.eval.with(Condition::Margin {
+        let touch = Condition::Margin {
             kind: if e.stick {
                 ViolationKind::StickEnd
             } else {
@@ -201,38 +203,40 @@ impl<M: Model> Tracer<'_, M> {
             },
             segment: 0,
             boundary: Some(e.boundary),
-        }));
-        let done = sys.correct_pair(&mut y, self.opts.tolerance, PAIR_ITERATIONS);
-        sys.pair = None;
-        if !matches!(done, Correction::Converged { .. })
-            || self.out_of_box(&y)
-            || sys.held(&y) > HOLDS_TO
-        {
-            return None;
-        }
-        // Ahead of `prev` in the plane, within `bound`.
-        let k = y.len();
-        let spans = self.sys.spans();
-        let ahead = (0..2)
-            .map(|a| (y[k - 2 + a] - prev.x[n - 2 + a]) * prev.t[n - 2 + a] / (spans[a] * spans[a]))
-            .sum::<f64>();
-        let plane = [prev.x[n - 2], prev.x[n - 1]];
-        let far = self.plane_distance(&y[k - 2..], &plane);
-        if !(ahead > 0.0 && far <= bound) {
-            return None;
-        }
-        // Every other condition of the reduced motion holds there.
-        let mut reduced = Tracer {
-            sys,
-            opts: self.opts,
-            plane: self.plane,
         };
-        let at = reduced.examine(y.clone(), vec![0.0; k]).ok()?;
-        if at.other < -SAME_EVENT {
-            return None;
-        }
+        let structure = Structure::from_indices(M::INFO, &reduced_steps, periods).ok()?;
+        let y = match self.solve_on(prev, bound, &structure, y.clone(), own, touch) {
+            Some(y) => y,
+            // A reduced motion of two equal halves, `T T`: where the motion
+            // is one born at `T`'s period doubling, its halves coincide at
+            // the end (its other half's stick or excursion touching there
+            // too), and the reduced system is singular (`T T` has a branch
+            // point there, and both halves' margins vanish together): solved
+            // on `T` with its period-doubling test function, then doubled.
+            None => {
+                let half = reduced_steps.len() / 2;
+                let (first, second) = reduced_steps.split_at(half);
+                if half == 0 || first != second || periods % 2 != 0 {
+                    return None;
+                }
+                let t = Structure::from_indices(M::INFO, first, periods / 2).ok()?;
+                let mut z: Vec<f64> = y[..2 * half].to_vec();
+                z.extend_from_slice(&y[y.len() - 2..]);
+                let pd = Condition::Eigen(TransitionKind::PeriodDoubling);
+                let z = self.solve_on(prev, bound, &t, z, pd, touch)?;
+                let mut y = z[..2 * half].to_vec();
+                for i in 0..half {
+                    y.extend([z[2 * i], z[2 * i + 1] + 0.5 * shift]);
+                }
+                y.extend_from_slice(&z[2 * half..]);
+                y
+            }
+        };
+        let k = y.len();
         // The graze, nearest the excursion's departure at `prev`.
-        let p = reduced.sys.params(&y);
+        let mut p = *self.sys.base();
+        p.set(self.plane.x, y[k - 2]);
+        p.set(self.plane.y, y[k - 1]);
         let near = rotated(1).1;
         let end = if k > 4 { y[3] } else { y[1] + shift };
         let (xg, pg) = graze::<M>(&p, e, [y[0], y[1]], end, near)?;
@@ -251,6 +255,57 @@ impl<M: Model> Tracer<'_, M> {
         x[n - 2] = y[k - 2];
         x[n - 1] = y[k - 1];
         self.examine(x, prev.t.clone()).ok()
+    }
+}
+
+impl<M: Model> Tracer<'_, M> {
+    /// The solution from `y` on `structure` of the mapping equations with
+    /// `own` and `second` (both parameters free), if it converges, lies in
+    /// the box, holds `own` to [`HOLDS_TO`] of its scale, lies ahead of
+    /// `prev` in the plane within `bound`, and every other condition of
+    /// that motion holds there to [`SAME_EVENT`].
+    fn solve_on(
+        &self,
+        prev: &Sample,
+        bound: f64,
+        structure: &Structure,
+        mut y: Vec<f64>,
+        own: Condition,
+        second: Condition,
+    ) -> Option<Vec<f64>> {
+        let mut sys = system::<M>(
+            self.sys.base(),
+            &self.plane,
+            Some(structure),
+            &to_point(&y),
+            own,
+        )
+        .ok()?;
+        sys.pair = Some(sys.eval.with(second));
+        let done = sys.correct_pair(&mut y, self.opts.tolerance, PAIR_ITERATIONS);
+        sys.pair = None;
+        if !matches!(done, Correction::Converged { .. })
+            || self.out_of_box(&y)
+            || sys.held(&y) > HOLDS_TO
+        {
+            return None;
+        }
+        let (n, k) = (prev.x.len(), y.len());
+        let spans = self.sys.spans();
+        let ahead = (0..2)
+            .map(|a| (y[k - 2 + a] - prev.x[n - 2 + a]) * prev.t[n - 2 + a] / (spans[a] * spans[a]))
+            .sum::<f64>();
+        let far = self.plane_distance(&y[k - 2..], &prev.x[n - 2..]);
+        if !(ahead > 0.0 && far <= bound) {
+            return None;
+        }
+        let mut reduced = Tracer {
+            sys,
+            opts: self.opts,
+            plane: self.plane,
+        };
+        let at = reduced.examine(y, vec![0.0; k]).ok()?;
+        (at.other >= -SAME_EVENT).then_some(at.x)
     }
 }
 

@@ -1,0 +1,155 @@
+//! A curve whose motion loses an excursion between two sticks, where the
+//! motion is one born at a period doubling: on `stribeck8` the period-2
+//! motion `T'T` (`T` = `7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77`, `T'` the
+//! same with the stick split by an excursion `0_11 1_11 0_11`) has a fold
+//! curve along which the excursion shrinks to nothing. The reduced motion
+//! `T T` has two equal halves there and its system is singular (a branch
+//! point), so the end is solved on `T` with its period-doubling test
+//! function and its stick touching `±as`: the point where `T`'s
+//! period-doubling and stick-vanishing curves meet. Until this stop the
+//! curve crawled 1.1e-2 of the box short of it ("the grazing margin of
+//! segment 13 on Sigma1 is 7.4e-8 there and falling").
+//!
+//! Checked independently: `T`'s period-doubling curve, traced in the same
+//! run on its own condition, ends at the same point; and there `T`'s
+//! mapping equations, `det(I + DP)` and its stick's margin vanish, by the
+//! public evaluators.
+
+use stickslip::bifurcation::curve::{
+    condition_scale, condition_value, Condition, CurveEndReason, CurvePoint, Plane,
+};
+use stickslip::bifurcation::TransitionKind;
+use stickslip::models::stribeck8::{self, Stribeck8};
+use stickslip::orbit::admissible::ViolationKind;
+use stickslip::orbit::periodic::SwitchingPoint;
+use stickslip::orbit::structure::Structure;
+use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
+use stickslip::{MappingKind, Model, ParamSet};
+
+#[test]
+fn a_curve_whose_excursion_between_sticks_vanishes_ends_at_the_period_doubling_it_was_born_at() {
+    let base = stribeck8::Params::default();
+    let opts = CurvesOptions {
+        x: ("W".into(), [1.85, 1.95]),
+        y: ("Q0".into(), [4.45, 4.7]),
+        seeds: Vec::new(),
+        at: Vec::new(),
+    };
+    let (_, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).expect("run");
+    let info = Stribeck8::INFO;
+    let plane = Plane {
+        x: stribeck8::Params::index_of("W").unwrap(),
+        y: stribeck8::Params::index_of("Q0").unwrap(),
+        x_range: [1.85, 1.95],
+        y_range: [4.45, 4.7],
+    };
+    let mut found = 0;
+    for c in &curves {
+        let (Condition::Eigen(TransitionKind::Fold), Some(s)) = (c.condition, &c.structure) else {
+            continue;
+        };
+        for e in c
+            .ends
+            .iter()
+            .filter(|e| matches!(e.reason, CurveEndReason::Codim2 { .. }))
+        {
+            let pts = &e.at.points;
+            let m = pts.len();
+            let steps = s.steps();
+            // The excursion: a zero-length segment between two sticks.
+            let Some(k) = (1..m - 1).find(|&k| {
+                (pts[k].x - pts[k + 1].x).abs() <= 1e-12
+                    && (pts[k].phase - pts[k + 1].phase).abs() <= 1e-12
+                    && info.mappings[steps[k - 1]].kind == MappingKind::Stick
+                    && info.mappings[steps[k + 1]].kind == MappingKind::Stick
+            }) else {
+                continue;
+            };
+            // The reduced motion by hand: the excursion and the stick
+            // before it dropped (the stick after it goes on to the same
+            // exit), starting at that stick.
+            let mut reduced: Vec<usize> = steps[k + 1..].to_vec();
+            reduced.extend_from_slice(&steps[..k - 1]);
+            let mut q: Vec<SwitchingPoint> = pts[k - 1..k].to_vec();
+            let shift = std::f64::consts::TAU * s.periods() as f64;
+            q.extend(pts[k + 2..].iter().copied());
+            q.extend(pts[..k - 1].iter().map(|p| SwitchingPoint {
+                x: p.x,
+                phase: p.phase + shift,
+            }));
+            let half = reduced.len() / 2;
+            assert_eq!(
+                reduced[..half],
+                reduced[half..],
+                "the reduced motion is T T"
+            );
+            let t = Structure::from_indices(info, &reduced[..half], s.periods() / 2).unwrap();
+            let point = CurvePoint {
+                x: e.at.x,
+                y: e.at.y,
+                points: q[..half].to_vec(),
+            };
+            let mut p = base;
+            p.W = e.at.x;
+            p.Q0 = e.at.y;
+            // T's motion: its mapping equations, its period doubling, its
+            // stick touching `±as`.
+            let t_shift = shift / 2.0;
+            for i in 0..half {
+                let a = point.points[i];
+                let b = point.points.get(i + 1).copied().unwrap_or(SwitchingPoint {
+                    x: point.points[0].x,
+                    phase: point.points[0].phase + t_shift,
+                });
+                let r = Stribeck8::residual(&p, t.steps()[i], a.x, a.phase, b.x, b.phase);
+                assert!(r.norm() <= 1e-10, "mapping {i}: {r:?}");
+            }
+            // The other half repeats the first (to the end's tolerance).
+            for i in 0..half {
+                assert!((q[half + i].x - q[i].x).abs() <= 1e-8, "{i}");
+                assert!(
+                    (q[half + i].phase - q[i].phase - t_shift).abs() <= 1e-8,
+                    "{i}"
+                );
+            }
+            let stick = info.mappings[t.steps()[0]].from;
+            for condition in [
+                Condition::Eigen(TransitionKind::PeriodDoubling),
+                Condition::Margin {
+                    kind: ViolationKind::StickEnd,
+                    segment: 0,
+                    boundary: Some(stick),
+                },
+            ] {
+                let g = condition_value::<Stribeck8>(&base, &plane, Some(&t), &point, condition)
+                    .expect("evaluable");
+                let scale = condition_scale::<Stribeck8>(&p, condition, Some(&t), &point.points);
+                assert!(
+                    (g / scale).abs() <= 1e-10,
+                    "{condition:?}: {g:e} of {scale:e}"
+                );
+            }
+            // Independently: T's period-doubling curve ends there.
+            let canonical = t.canonical(info).0;
+            let met = curves.iter().any(|d| {
+                d.condition == Condition::Eigen(TransitionKind::PeriodDoubling)
+                    && d.structure
+                        .as_ref()
+                        .is_some_and(|u| u.canonical(info).0 == canonical)
+                    && d.ends
+                        .iter()
+                        .any(|f| (f.at.x - e.at.x).abs() <= 1e-8 && (f.at.y - e.at.y).abs() <= 1e-8)
+            });
+            assert!(
+                met,
+                "T's period-doubling curve does not end at {:?}",
+                (e.at.x, e.at.y)
+            );
+            found += 1;
+        }
+    }
+    assert!(
+        found >= 1,
+        "no fold curve ends where its excursion between sticks vanishes"
+    );
+}
