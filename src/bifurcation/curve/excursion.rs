@@ -153,26 +153,17 @@ impl<M: Model> Tracer<'_, M> {
     /// motion holding to [`SAME_EVENT`]. Returned in the curve's unknowns,
     /// the excursion's two switching points at the graze.
     pub(super) fn excursion_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
+        excursions::<M>(&self.sys.eval.steps, self.sys.eval.shift, &prev.x)
+            .into_iter()
+            .find_map(|e| self.reduced_point(prev, bound, &e))
+    }
+
+    /// [`Self::excursion_point`] for the excursion `e`.
+    fn reduced_point(&mut self, prev: &Sample, bound: f64, e: &Excursion) -> Option<Sample> {
         let steps = self.sys.eval.steps.clone();
         let shift = self.sys.eval.shift;
         let periods = self.sys.eval.structure.as_ref()?.periods();
         let condition = self.sys.eval.condition;
-        excursions::<M>(&steps, shift, &prev.x)
-            .into_iter()
-            .find_map(|e| self.reduced_point(prev, bound, &steps, shift, periods, condition, &e))
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn reduced_point(
-        &mut self,
-        prev: &Sample,
-        bound: f64,
-        steps: &[usize],
-        shift: f64,
-        periods: u32,
-        condition: Condition,
-        e: &Excursion,
-    ) -> Option<Sample> {
         let m = steps.len();
         let n = prev.x.len();
         let own = carried(condition, e, m)?;
