@@ -25,8 +25,11 @@
 //! (its end), the margins of `admissible::conditions` there, and the curve's
 //! exact crossing of the branch's line.
 
+mod common;
+
 use std::sync::OnceLock;
 
+use common::cycle::{fold_ends, worst_residual};
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, condition_value, crossings, trace, Condition, Curve,
     CurveEndReason, CurveError, CurveOptions, CurvePoint, Line, Plane,
@@ -671,110 +674,85 @@ fn a_fold_curve_whose_excursion_shrinks_to_nothing_ends_where_the_reduced_motion
     let info = Stribeck8::INFO;
     let curves = s8box();
     let mut found = 0;
-    for c in curves {
-        let (Condition::Eigen(TransitionKind::Fold), Some(s)) = (c.condition, &c.structure) else {
+    for (s, e) in fold_ends(curves) {
+        let pts = &e.at.points;
+        let m = pts.len();
+        let same = |a: usize, b: usize| {
+            (pts[a].x - pts[b].x).abs() <= 1e-12 && (pts[a].phase - pts[b].phase).abs() <= 1e-12
+        };
+        let Some(k) = (1..m - 1).find(|&k| same(k, k + 1)) else {
             continue;
         };
-        for e in c
-            .ends
+        let steps = s.steps();
+        let (before, excursion, after) = (
+            info.mappings[steps[k - 1]],
+            info.mappings[steps[k]],
+            info.mappings[steps[k + 1]],
+        );
+        let b = excursion.from;
+        assert_eq!(excursion.to, b, "{}", excursion.name);
+        assert_eq!(before.domain, after.domain);
+        // The reduced motion, by hand.
+        let merged = info
+            .mappings
             .iter()
-            .filter(|e| matches!(e.reason, CurveEndReason::Codim2 { .. }))
-        {
-            let pts = &e.at.points;
-            let m = pts.len();
-            let same = |a: usize, b: usize| {
-                (pts[a].x - pts[b].x).abs() <= 1e-12 && (pts[a].phase - pts[b].phase).abs() <= 1e-12
-            };
-            let Some(k) = (1..m - 1).find(|&k| same(k, k + 1)) else {
-                continue;
-            };
-            let steps = s.steps();
-            let (before, excursion, after) = (
-                info.mappings[steps[k - 1]],
-                info.mappings[steps[k]],
-                info.mappings[steps[k + 1]],
-            );
-            let b = excursion.from;
-            assert_eq!(excursion.to, b, "{}", excursion.name);
-            assert_eq!(before.domain, after.domain);
-            // The reduced motion, by hand.
-            let merged = info
-                .mappings
-                .iter()
-                .position(|q| {
-                    q.domain == before.domain && q.from == before.from && q.to == after.to
-                })
-                .expect("the merged mapping");
-            let mut reduced_steps = steps[..k - 1].to_vec();
-            reduced_steps.push(merged);
-            reduced_steps.extend_from_slice(&steps[k + 2..]);
-            let reduced = Structure::from_indices(info, &reduced_steps, s.periods()).unwrap();
-            let mut reduced_points = pts[..k].to_vec();
-            reduced_points.extend_from_slice(&pts[k + 2..]);
-            let point = CurvePoint {
-                x: e.at.x,
-                y: e.at.y,
-                points: reduced_points.clone(),
-            };
-            let p = params(e.at.x, e.at.y);
-            // Both motions' mapping equations hold there (the excursion's
-            // of zero length).
-            let shift = std::f64::consts::TAU * s.periods() as f64;
-            for (steps, q) in [(steps, &pts[..]), (&reduced_steps[..], &reduced_points[..])] {
-                for (i, &step) in steps.iter().enumerate() {
-                    let (a, z) = (q[i], q.get(i + 1).copied());
-                    let z = z.unwrap_or(stickslip::orbit::periodic::SwitchingPoint {
-                        x: q[0].x,
-                        phase: q[0].phase + shift,
-                    });
-                    let r = Stribeck8::residual(&p, step, a.x, a.phase, z.x, z.phase);
-                    assert!(r.norm() <= 1e-10, "mapping {i} of {}: {r:?}", steps.len());
-                }
-            }
-            for condition in [
-                Condition::Eigen(TransitionKind::Fold),
-                Condition::Margin {
-                    kind: ViolationKind::Interior,
-                    segment: k - 1,
-                    boundary: Some(b),
-                },
-            ] {
-                let g = condition_value::<Stribeck8>(
-                    &base,
-                    &plane(),
-                    Some(&reduced),
-                    &point,
-                    condition,
-                )
-                .expect("evaluable");
-                let scale =
-                    condition_scale::<Stribeck8>(&p, condition, Some(&reduced), &point.points);
-                assert!(
-                    (g / scale).abs() <= 1e-10,
-                    "{condition:?}: {g:e} of {scale:e}"
-                );
-            }
-            // Independently: the reduced motion's grazing curve of that
-            // boundary meets a fold there.
-            let canonical = reduced.canonical(info).0;
-            let met = curves.iter().any(|d| {
-                d.structure
-                    .as_ref()
-                    .is_some_and(|t| t.canonical(info).0 == canonical)
-                    && d.boundary == Some(b)
-                    && d.special.iter().any(|sp| {
-                        sp.kind == TransitionKind::Fold
-                            && (sp.at.x - e.at.x).abs() <= 1e-8
-                            && (sp.at.y - e.at.y).abs() <= 1e-8
-                    })
-            });
-            assert!(
-                met,
-                "no grazing curve of the reduced motion meets a fold at {:?}",
-                (e.at.x, e.at.y)
-            );
-            found += 1;
+            .position(|q| q.domain == before.domain && q.from == before.from && q.to == after.to)
+            .expect("the merged mapping");
+        let mut reduced_steps = steps[..k - 1].to_vec();
+        reduced_steps.push(merged);
+        reduced_steps.extend_from_slice(&steps[k + 2..]);
+        let reduced = Structure::from_indices(info, &reduced_steps, s.periods()).unwrap();
+        let mut reduced_points = pts[..k].to_vec();
+        reduced_points.extend_from_slice(&pts[k + 2..]);
+        let point = CurvePoint {
+            x: e.at.x,
+            y: e.at.y,
+            points: reduced_points.clone(),
+        };
+        let p = params(e.at.x, e.at.y);
+        // Both motions' mapping equations hold there (the excursion's
+        // of zero length).
+        for (steps, q) in [(steps, &pts[..]), (&reduced_steps[..], &reduced_points[..])] {
+            let r = worst_residual::<Stribeck8>(&p, steps, q, s.periods());
+            assert!(r <= 1e-10, "{} mappings: {r:e}", steps.len());
         }
+        for condition in [
+            Condition::Eigen(TransitionKind::Fold),
+            Condition::Margin {
+                kind: ViolationKind::Interior,
+                segment: k - 1,
+                boundary: Some(b),
+            },
+        ] {
+            let g =
+                condition_value::<Stribeck8>(&base, &plane(), Some(&reduced), &point, condition)
+                    .expect("evaluable");
+            let scale = condition_scale::<Stribeck8>(&p, condition, Some(&reduced), &point.points);
+            assert!(
+                (g / scale).abs() <= 1e-10,
+                "{condition:?}: {g:e} of {scale:e}"
+            );
+        }
+        // Independently: the reduced motion's grazing curve of that
+        // boundary meets a fold there.
+        let canonical = reduced.canonical(info).0;
+        let met = curves.iter().any(|d| {
+            d.structure
+                .as_ref()
+                .is_some_and(|t| t.canonical(info).0 == canonical)
+                && d.boundary == Some(b)
+                && d.special.iter().any(|sp| {
+                    sp.kind == TransitionKind::Fold
+                        && (sp.at.x - e.at.x).abs() <= 1e-8
+                        && (sp.at.y - e.at.y).abs() <= 1e-8
+                })
+        });
+        assert!(
+            met,
+            "no grazing curve of the reduced motion meets a fold at {:?}",
+            (e.at.x, e.at.y)
+        );
+        found += 1;
     }
     assert!(
         found >= 1,

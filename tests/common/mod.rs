@@ -17,9 +17,12 @@
 //! * `reference`: the reference periodic motions of `../shared/reference/`.
 //! * `resimulate`: a periodic motion re-simulated by the library from its
 //!   first switching point.
+//! * `cycle`: the mapping equations of a cycle of mappings at its switching
+//!   points (a motion built by hand).
 #![allow(dead_code)]
 
 pub mod counting;
+pub mod cycle;
 pub mod dopri;
 pub mod events;
 pub mod graze;

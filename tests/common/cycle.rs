@@ -1,0 +1,52 @@
+//! The mapping equations of a cycle of mappings at its switching points,
+//! from the generated residuals alone: the check that a motion built by
+//! hand in a test (a structure reduced, a half of a doubled one) is one.
+
+use stickslip::orbit::periodic::SwitchingPoint;
+use stickslip::Model;
+
+/// The largest `|f|` (Euclidean, per mapping) of the mapping equations of
+/// `steps` (mapping indices) from each of `points` to the next, the last
+/// to the first one cycle (`2π · periods`) later.
+pub fn worst_residual<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    points: &[SwitchingPoint],
+    periods: u32,
+) -> f64 {
+    let shift = std::f64::consts::TAU * f64::from(periods);
+    let mut worst = 0.0f64;
+    for (i, &step) in steps.iter().enumerate() {
+        let a = points[i];
+        let b = points.get(i + 1).copied().unwrap_or(SwitchingPoint {
+            x: points[0].x,
+            phase: points[0].phase + shift,
+        });
+        let r = M::residual(p, step, a.x, a.phase, b.x, b.phase).norm();
+        worst = if r.is_nan() {
+            f64::INFINITY
+        } else {
+            worst.max(r)
+        };
+    }
+    worst
+}
+
+/// The codimension-two ends of the fold curves among `curves`, each with
+/// its curve's motion.
+pub fn fold_ends(
+    curves: &[stickslip::bifurcation::curve::Curve],
+) -> Vec<(
+    &stickslip::orbit::structure::Structure,
+    &stickslip::bifurcation::curve::CurveEnd,
+)> {
+    use stickslip::bifurcation::curve::{Condition, CurveEndReason};
+    use stickslip::bifurcation::TransitionKind;
+    curves
+        .iter()
+        .filter(|c| c.condition == Condition::Eigen(TransitionKind::Fold))
+        .filter_map(|c| c.structure.as_ref().map(|s| (s, &c.ends)))
+        .flat_map(|(s, ends)| ends.iter().map(move |e| (s, e)))
+        .filter(|(_, e)| matches!(e.reason, CurveEndReason::Codim2 { .. }))
+        .collect()
+}
