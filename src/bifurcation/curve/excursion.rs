@@ -32,8 +32,9 @@
 
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::TransitionKind;
+use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{MappingInfo, MappingKind, Model, ParamSet};
-use crate::orbit::admissible::{ViolationKind, SAME_EVENT};
+use crate::orbit::admissible::{early_end_phase, ViolationKind, SAME_EVENT};
 use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::structure::Structure;
 
@@ -301,9 +302,9 @@ impl<M: Model> Tracer<'_, M> {
 }
 
 /// Where the merged segment of `e` from `(x, φ)` = `start` to phase `end`
-/// touches the excursion's boundary: a flow's velocity extremum, a stick's
-/// extremum of `Fnf` (`sin φ* = −c v_s / (A0 W)`, as
-/// `orbit::admissible`'s stick margin); the one nearest phase `near`.
+/// touches the excursion's boundary: a flow's velocity extremum (the one
+/// nearest phase `near`), a stick's extremum of `Fnf` (the one its smooth
+/// margin takes, `orbit::admissible`'s).
 fn graze<M: Model>(
     p: &M::Params,
     e: &Excursion,
@@ -312,35 +313,30 @@ fn graze<M: Model>(
     near: f64,
 ) -> Option<(f64, f64)> {
     let osc = M::oscillator(p);
-    let v0 = M::boundary_velocity(p, e.boundary);
-    let mut best: Option<(f64, f64)> = None;
-    let mut take = |x: f64, phase: f64| {
-        if best.is_none_or(|b: (f64, f64)| (phase - near).abs() < (b.1 - near).abs()) {
-            best = Some((x, phase));
-        }
-    };
     if e.stick {
-        let s = -osc.stiffness * v0 / (osc.amplitude * osc.frequency);
-        if s.abs().partial_cmp(&1.0) != Some(std::cmp::Ordering::Less) {
-            return None;
-        }
-        let tau = std::f64::consts::TAU;
-        for root in [s.asin(), std::f64::consts::PI - s.asin()] {
-            let phase = root + ((near - root) / tau).round() * tau;
-            if phase > start[1] && phase < end {
-                take(start[0] + v0 * (phase - start[1]) / osc.frequency, phase);
-            }
-        }
-    } else {
-        let mi = M::INFO.mappings[e.merged];
-        let flow = SegmentFlow::new(
-            osc,
-            M::coefficients(p, mi.domain?),
-            start[0],
-            M::boundary_velocity(p, mi.from),
-            start[1],
-        )?;
-        flow.acceleration_zeros(start[1], end, |_| false, |z| take(z.state.x, z.phase));
+        let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
+        let phase = early_end_phase(&sim, e.boundary, start[0], start[1], end)?;
+        let v0 = M::boundary_velocity(p, e.boundary);
+        return Some((start[0] + v0 * (phase - start[1]) / osc.frequency, phase));
     }
+    let mi = M::INFO.mappings[e.merged];
+    let flow = SegmentFlow::new(
+        osc,
+        M::coefficients(p, mi.domain?),
+        start[0],
+        M::boundary_velocity(p, mi.from),
+        start[1],
+    )?;
+    let mut best: Option<(f64, f64)> = None;
+    flow.acceleration_zeros(
+        start[1],
+        end,
+        |_| false,
+        |z| {
+            if best.is_none_or(|b| (z.phase - near).abs() < (b.1 - near).abs()) {
+                best = Some((z.state.x, z.phase));
+            }
+        },
+    );
     best
 }

@@ -37,7 +37,20 @@ pub(super) fn early_end_margin<M: Model>(
     phi_a: f64,
     phi_b: f64,
 ) -> Option<f64> {
-    early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _)| m)
+    early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _, _)| m)
+}
+
+/// The phase of the interior extremum of `Fnf` whose margin
+/// [`early_end_margin`] takes (the smallest): where the stick touches
+/// `±as` when that margin is zero.
+pub(crate) fn early_end_phase<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> Option<f64> {
+    early_end(sim, k, x_a, phi_a, phi_b).map(|(_, _, phase)| phase)
 }
 
 /// The margin of [`early_end_margin`] of the stick `segment` of `structure`
@@ -58,18 +71,18 @@ pub(crate) fn early_end_extremum<M: Model>(
     }
     let shift = std::f64::consts::TAU * structure.periods() as f64;
     let (a, b) = (points[segment], arrival(points, segment, shift));
-    early_end(sim, mi.from, a.x, a.phase, b.phase)
+    early_end(sim, mi.from, a.x, a.phase, b.phase).map(|(m, gap, _)| (m, gap))
 }
 
-/// The smallest margin over the interior extrema and that extremum's
-/// distance (in phase) to the nearer end of the stick.
+/// The smallest margin over the interior extrema, that extremum's
+/// distance (in phase) to the nearer end of the stick, and its phase.
 fn early_end<M: Model>(
     sim: &Simulator<M>,
     k: usize,
     x_a: f64,
     phi_a: f64,
     phi_b: f64,
-) -> Option<(f64, f64)> {
+) -> Option<(f64, f64, f64)> {
     let (stick, bound) = sim.stick()?;
     // (NaN phases fail `phi_a < phi_b`.)
     if stick != k || phi_a.partial_cmp(&phi_b) != Some(std::cmp::Ordering::Less) {
@@ -85,7 +98,7 @@ fn early_end<M: Model>(
     }
     let base = s.asin();
     let tau = std::f64::consts::TAU;
-    let mut best: Option<(f64, f64)> = None;
+    let mut best: Option<(f64, f64, f64)> = None;
     for root in [base, std::f64::consts::PI - base] {
         // The first root above φ_a, then every turn up to φ_b.
         let mut n = ((phi_a - root) / tau).ceil();
@@ -107,8 +120,8 @@ fn early_end<M: Model>(
             } else {
                 bound + f
             };
-            if best.is_none_or(|(b, _)| margin.is_nan() || margin < b) {
-                best = Some((margin, (phi - phi_a).min(phi_b - phi)));
+            if best.is_none_or(|(b, _, _)| margin.is_nan() || margin < b) {
+                best = Some((margin, (phi - phi_a).min(phi_b - phi), phi));
             }
         }
     }
