@@ -17,10 +17,8 @@
 
 mod common;
 
-use common::cycle::{fold_ends, worst_residual};
-use stickslip::bifurcation::curve::{
-    condition_scale, condition_value, Condition, CurvePoint, Plane,
-};
+use common::cycle::{fold_ends, held, worst_residual};
+use stickslip::bifurcation::curve::{Condition, CurvePoint, Plane};
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::ViolationKind;
@@ -109,13 +107,8 @@ fn a_curve_whose_excursion_between_sticks_vanishes_ends_at_the_period_doubling_i
                 boundary: Some(stick),
             },
         ] {
-            let g = condition_value::<Stribeck8>(&base, &plane, Some(&t), &point, condition)
-                .expect("evaluable");
-            let scale = condition_scale::<Stribeck8>(&p, condition, Some(&t), &point.points);
-            assert!(
-                (g / scale).abs() <= 1e-10,
-                "{condition:?}: {g:e} of {scale:e}"
-            );
+            let r = held::<Stribeck8>(&base, &plane, &t, &point, condition);
+            assert!(r <= 1e-10, "{condition:?}: {r:e} of its scale");
         }
         // Independently: T's period-doubling curve ends there.
         let canonical = t.canonical(info).0;

@@ -50,3 +50,23 @@ pub fn fold_ends(
         .filter(|(_, e)| matches!(e.reason, CurveEndReason::Codim2 { .. }))
         .collect()
 }
+
+/// `|g| / scale` of `condition` of the motion `point` of `structure`
+/// (`condition_value` over `condition_scale`, the curves' public
+/// evaluators), every parameter but the plane's two from `base`.
+pub fn held<M: Model>(
+    base: &M::Params,
+    plane: &stickslip::bifurcation::curve::Plane,
+    structure: &stickslip::orbit::structure::Structure,
+    point: &stickslip::bifurcation::curve::CurvePoint,
+    condition: stickslip::bifurcation::curve::Condition,
+) -> f64 {
+    use stickslip::bifurcation::curve::{condition_scale, condition_value};
+    use stickslip::ParamSet;
+    let g =
+        condition_value::<M>(base, plane, Some(structure), point, condition).expect("evaluable");
+    let mut p = *base;
+    p.set(plane.x, point.x);
+    p.set(plane.y, point.y);
+    (g / condition_scale::<M>(&p, condition, Some(structure), &point.points)).abs()
+}

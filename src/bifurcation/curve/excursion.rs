@@ -34,7 +34,7 @@ use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{MappingInfo, MappingKind, Model, ParamSet};
-use crate::orbit::admissible::{early_end_phase, ViolationKind, SAME_EVENT};
+use crate::orbit::admissible::{early_end, ViolationKind, SAME_EVENT};
 use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::structure::Structure;
 
@@ -315,7 +315,7 @@ fn graze<M: Model>(
     let osc = M::oscillator(p);
     if e.stick {
         let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
-        let phase = early_end_phase(&sim, e.boundary, start[0], start[1], end)?;
+        let (_, _, phase) = early_end(&sim, e.boundary, start[0], start[1], end)?;
         let v0 = M::boundary_velocity(p, e.boundary);
         return Some((start[0] + v0 * (phase - start[1]) / osc.frequency, phase));
     }

@@ -40,19 +40,6 @@ pub(super) fn early_end_margin<M: Model>(
     early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _, _)| m)
 }
 
-/// The phase of the interior extremum of `Fnf` whose margin
-/// [`early_end_margin`] takes (the smallest): where the stick touches
-/// `±as` when that margin is zero.
-pub(crate) fn early_end_phase<M: Model>(
-    sim: &Simulator<M>,
-    k: usize,
-    x_a: f64,
-    phi_a: f64,
-    phi_b: f64,
-) -> Option<f64> {
-    early_end(sim, k, x_a, phi_a, phi_b).map(|(_, _, phase)| phase)
-}
-
 /// The margin of [`early_end_margin`] of the stick `segment` of `structure`
 /// at `points`, with the phase from its extremum to the nearer end of the
 /// stick: an extremum at an end (the stick's exit turning tangential) makes
@@ -74,9 +61,10 @@ pub(crate) fn early_end_extremum<M: Model>(
     early_end(sim, mi.from, a.x, a.phase, b.phase).map(|(m, gap, _)| (m, gap))
 }
 
-/// The smallest margin over the interior extrema, that extremum's
-/// distance (in phase) to the nearer end of the stick, and its phase.
-fn early_end<M: Model>(
+/// The smallest margin over the interior extrema ([`early_end_margin`]),
+/// that extremum's distance (in phase) to the nearer end of the stick, and
+/// its phase (where the stick touches `±as` when the margin is zero).
+pub(crate) fn early_end<M: Model>(
     sim: &Simulator<M>,
     k: usize,
     x_a: f64,
