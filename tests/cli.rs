@@ -449,6 +449,50 @@ fn bad_input_is_rejected_with_a_clear_message() {
     );
 }
 
+/// A `--set` of the parameter a command varies would be overwritten
+/// silently: every command that varies one refuses it.
+#[test]
+fn a_set_of_the_varied_parameter_is_refused() {
+    let out = tmp("set-varied.csv");
+    let out = out.to_str().unwrap();
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["sweep", "--param", "W=1:2:3", "--set", "W=5"],
+            "`--set W=...`: `W` is varied by --param",
+        ),
+        (
+            &["orbit-diagram", "--param", "W=1:2:3", "--set", "Q0=70,W=5"],
+            "`W` is varied by --param",
+        ),
+        (
+            &[
+                "map", "--x", "W=1:2:3", "--y", "Q0=1:3:3", "--set", "Q0=5", "--out", out,
+            ],
+            "`Q0` is varied by --y",
+        ),
+        (
+            &["curves", "--x", "W=1:2", "--y", "Q0=1:3", "--set", "W=5"],
+            "`W` is varied by --x",
+        ),
+        (
+            &[
+                "curves",
+                "--x",
+                "W=1:2",
+                "--y",
+                "Q0=1:3",
+                "--set",
+                "d=0.1,Q0=5",
+            ],
+            "`Q0` is varied by --y",
+        ),
+    ];
+    for (args, message) in cases {
+        assert_rejected(args, message);
+    }
+    assert!(!std::path::Path::new(out).exists(), "map wrote {out}");
+}
+
 #[test]
 fn an_inadmissible_solution_is_not_reported_as_a_motion() {
     // At W = 3.7 the motion sticks: Newton on P_{3_33 4_33} converges to a

@@ -51,6 +51,18 @@ impl Assignments {
             .map(Self)
     }
 
+    /// Refuse an item naming `name`, which `by` (`--param`, `--x`, `--y`)
+    /// varies.
+    pub fn leave_free(&self, name: &str, by: &'static str) -> Result<(), CliError> {
+        match self.0.iter().find(|(n, _)| n == name) {
+            Some((n, _)) => Err(CliError::SetVaried {
+                name: n.clone(),
+                by,
+            }),
+            None => Ok(()),
+        }
+    }
+
     /// The pairs.
     pub fn pairs(&self) -> &[(String, f64)] {
         &self.0

@@ -113,6 +113,8 @@ impl WithModel for CurvesCmd {
             seeds: Vec::new(),
             at: Vec::new(),
         };
+        set.leave_free(&opts.x.0, "--x")?;
+        set.leave_free(&opts.y.0, "--y")?;
         for text in &self.args.seed {
             let (name, values) = parse_lines("--seed", text)?;
             for v in values {

@@ -64,6 +64,7 @@ impl WithModel for DiagramCmd {
         let a = &self.args;
         let set = Assignments::parse(&a.set)?;
         let range = ParamRange::parse(&a.param)?;
+        set.leave_free(&range.name, "--param")?;
         let base = set.params::<M>()?;
         let opts = DiagramOptions {
             transient: a.transient,

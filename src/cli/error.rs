@@ -44,6 +44,15 @@ pub enum CliError {
         /// Its value part.
         value: String,
     },
+    /// A `--set` item naming the parameter that `--param`, `--x` or `--y`
+    /// varies (its value would be overwritten without a word).
+    #[error("`--set {name}=...`: `{name}` is varied by {by}; drop it from --set")]
+    SetVaried {
+        /// The parameter.
+        name: String,
+        /// The option that varies it.
+        by: &'static str,
+    },
     /// A list of numbers (`--guess W t,x`, `--from x,v,W t`) of the wrong length.
     #[error("`{text}`: expected {what} ({count} comma-separated numbers)")]
     NumberCount {

@@ -72,6 +72,8 @@ impl WithModel for MapCmd {
         let set = Assignments::parse(&self.args.set)?;
         let x = GridAxis::parse_for::<M>(&self.args.x)?;
         let y = GridAxis::parse_for::<M>(&self.args.y)?;
+        set.leave_free(&x.name, "--x")?;
+        set.leave_free(&y.name, "--y")?;
         let base = set.params::<M>()?;
         let shard = self.args.shard.as_deref().map(Shard::parse).transpose()?;
         let opts = MapOptions {

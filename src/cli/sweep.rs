@@ -74,6 +74,7 @@ impl WithModel for SweepCmd {
             to,
             count,
         } = ParamRange::parse(&self.args.param)?;
+        set.leave_free(&name, "--param")?;
         let base = set.params::<M>()?;
         let opts = SweepOptions {
             starts: self.args.starts,
