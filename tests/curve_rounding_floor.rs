@@ -19,8 +19,8 @@
 
 mod common;
 
-use common::cycle::held;
-use stickslip::bifurcation::curve::{Condition, CurveEndReason, Plane};
+use common::cycle::{held, other_ends};
+use stickslip::bifurcation::curve::{Condition, Plane};
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck::pl4::{self, Pl4};
 use stickslip::orbit::periodic::{monodromy, NewtonOptions, PeriodicSolver, Termination};
@@ -47,23 +47,12 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
         x_range: wr,
         y_range: qr,
     };
+    let other = other_ends::<Pl4>(&curves);
+    assert!(other.is_empty(), "{other:#?}");
     let mut steep = 0;
     let mut checked = 0;
     let mut eigen = 0;
     for c in &curves {
-        for e in &c.ends {
-            assert!(
-                matches!(
-                    e.reason,
-                    CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
-                ),
-                "{:?} curve ends at W = {}, Q0 = {}: {:?}",
-                c.kind,
-                e.at.x,
-                e.at.y,
-                e.reason
-            );
-        }
         // A period-doubling motion exists either side of its curve (a
         // fold's does not: its mapping equations turn singular there).
         let Condition::Eigen(kind @ TransitionKind::PeriodDoubling) = c.condition else {

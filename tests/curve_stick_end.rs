@@ -324,20 +324,6 @@ fn the_curves_run_starts_the_stick_end_curve() {
         .map(|m| m.margin.abs())
         .fold(f64::INFINITY, f64::min);
     assert!(onset < 1e-6, "stick-onset margin {onset:e} at the end");
-    for c in &curves {
-        for e in &c.ends {
-            assert!(
-                matches!(
-                    e.reason,
-                    CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
-                ),
-                "{:?} {:?} ends at ({}, {}): {:?}",
-                c.kind,
-                c.structure.as_ref().map(|s| s.notation(Paper::INFO)),
-                e.at.x,
-                e.at.y,
-                e.reason
-            );
-        }
-    }
+    let other = common::cycle::other_ends::<Paper>(&curves);
+    assert!(other.is_empty(), "{other:#?}");
 }

@@ -70,3 +70,29 @@ pub fn held<M: Model>(
     p.set(plane.y, point.y);
     (g / condition_scale::<M>(&p, condition, Some(structure), &point.points)).abs()
 }
+
+/// Every end of `curves` that is neither on the box's edge nor at a
+/// codimension-two point, described (kind, motion, place, why).
+pub fn other_ends<M: Model>(curves: &[stickslip::bifurcation::curve::Curve]) -> Vec<String> {
+    use stickslip::bifurcation::curve::CurveEndReason;
+    curves
+        .iter()
+        .flat_map(|c| c.ends.iter().map(move |e| (c, e)))
+        .filter(|(_, e)| {
+            !matches!(
+                e.reason,
+                CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
+            )
+        })
+        .map(|(c, e)| {
+            format!(
+                "{:?} {:?} ends at W = {}, Q0 = {}: {:?}",
+                c.kind,
+                c.structure.as_ref().map(|s| s.notation(M::INFO)),
+                e.at.x,
+                e.at.y,
+                e.reason
+            )
+        })
+        .collect()
+}
