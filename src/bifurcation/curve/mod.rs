@@ -43,6 +43,7 @@ mod condition;
 mod crossing;
 mod excursion;
 pub mod extended;
+mod halves;
 mod start;
 mod stop;
 mod trace;

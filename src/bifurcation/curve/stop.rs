@@ -4,8 +4,9 @@
 //! directly: with the other margin that falls ([`Tracer::pair_point`]), at
 //! a tangential end of the grazed segment ([`Tracer::tangency_point`]), or
 //! on the reduced motion where an excursion shrinks to nothing
-//! ([`Tracer::excursion_point`]); else as a corrector failure that says
-//! why.
+//! ([`Tracer::excursion_point`]), or, on a fold curve of a motion of two
+//! equal halves that merge, at the degenerate period doubling of the half
+//! ([`Tracer::halves_point`]); else as a corrector failure that says why.
 
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::continuation::transition_kind;
@@ -161,7 +162,17 @@ impl<M: Model> Tracer<'_, M> {
         prev: Sample,
         why: String,
     ) -> (CurveEndReason, Sample) {
-        let Some((reason, at)) = self.vanishing_other(points, &prev) else {
+        let found = self.vanishing_other(points, &prev).or_else(|| {
+            // A fold of `T T` whose halves merge: `T`'s degenerate period
+            // doubling.
+            let at = self.halves_point(points, &prev)?;
+            let reason = CurveEndReason::Codim2 {
+                kind: TransitionKind::PeriodDoubling,
+                boundary: None,
+            };
+            Some((reason, at))
+        });
+        let Some((reason, at)) = found else {
             let why = match (prev.worst, self.falling_other(points, &prev)) {
                 (Some((kind, segment, boundary)), true) => format!(
                     "{why}; the {} margin of segment {segment}{} is {:.1e} there and falling: a codimension-two point lies ahead, not located",
