@@ -38,6 +38,7 @@ use crate::orbit::admissible::{early_end, ViolationKind, SAME_EVENT};
 use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::structure::Structure;
 
+use super::extended::Extended;
 use super::start::{system, to_point};
 use super::stop::PAIR_ITERATIONS;
 use super::trace::{Sample, Tracer, HOLDS_TO};
@@ -282,21 +283,35 @@ impl<M: Model> Tracer<'_, M> {
         {
             return None;
         }
+        if !self.ahead_within(prev, &y, bound) {
+            return None;
+        }
+        self.holding_on(sys, y)
+    }
+
+    /// Whether the parameters of `y` (a point of any structure, its last
+    /// two unknowns the plane's) lie ahead of `prev` along its tangent and
+    /// within `bound` of it in the plane (each parameter over its span).
+    pub(super) fn ahead_within(&self, prev: &Sample, y: &[f64], bound: f64) -> bool {
         let (n, k) = (prev.x.len(), y.len());
         let spans = self.sys.spans();
         let ahead = (0..2)
             .map(|a| (y[k - 2 + a] - prev.x[n - 2 + a]) * prev.t[n - 2 + a] / (spans[a] * spans[a]))
             .sum::<f64>();
         let far = self.plane_distance(&y[k - 2..], &prev.x[n - 2..]);
-        if !(ahead > 0.0 && far <= bound) {
-            return None;
-        }
-        let mut reduced = Tracer {
+        ahead > 0.0 && far <= bound
+    }
+
+    /// `y` examined on `sys` (another structure's system), if every other
+    /// condition of that motion holds there to [`SAME_EVENT`].
+    pub(super) fn holding_on(&self, sys: Extended<M>, y: Vec<f64>) -> Option<Vec<f64>> {
+        let k = y.len();
+        let mut other = Tracer {
             sys,
             opts: self.opts,
             plane: self.plane,
         };
-        let at = reduced.examine(y, vec![0.0; k]).ok()?;
+        let at = other.examine(y, vec![0.0; k]).ok()?;
         (at.other >= -SAME_EVENT).then_some(at.x)
     }
 }

@@ -24,7 +24,6 @@
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::TransitionKind;
 use crate::model::Model;
-use crate::orbit::admissible::SAME_EVENT;
 use crate::orbit::structure::Structure;
 
 use super::start::{system, to_point};
@@ -141,26 +140,12 @@ impl<M: Model> Tracer<'_, M> {
         {
             return None;
         }
-        let k = z.len();
-        let ahead = (0..2)
-            .map(|a| (z[k - 2 + a] - prev.x[n - 2 + a]) * prev.t[n - 2 + a] / (spans[a] * spans[a]))
-            .sum::<f64>();
-        let far = self.plane_distance(&z[k - 2..], &prev.x[n - 2..]);
         let reach = self.plane_distance(&estimate, &prev.x[n - 2..]);
-        if !(ahead > 0.0 && far <= 4.0 * reach + 16.0 * self.opts.min_step) {
+        if !self.ahead_within(prev, &z, 4.0 * reach + 16.0 * self.opts.min_step) {
             return None;
         }
-        let mut half = Tracer {
-            sys,
-            opts: self.opts,
-            plane: self.plane,
-        };
-        let at = half.examine(z, vec![0.0; k]).ok()?;
-        if at.other < -SAME_EVENT {
-            return None;
-        }
+        let z = self.holding_on(sys, z)?;
         // `T` doubled: the second half one cycle of `T` later.
-        let z = at.x;
         let mut x = z[..2 * h].to_vec();
         for i in 0..h {
             x.extend([z[2 * i], z[2 * i + 1] + 0.5 * shift]);

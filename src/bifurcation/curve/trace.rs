@@ -26,7 +26,7 @@ use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::detect;
 use crate::bifurcation::TransitionKind;
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::ConditionId;
+use crate::orbit::admissible::{ConditionId, SAME_EVENT};
 use crate::orbit::periodic::monodromy;
 use crate::orbit::stability::Stability;
 
@@ -303,11 +303,29 @@ impl<M: Model> Tracer<'_, M> {
             let (good, bad) = self.locate(prev, s_c, cand.other_event, |s| s.other_event);
             // Named by the smooth margins (the event search's margin of a
             // stick's end is its phase tolerance wherever the stick ends as
-            // claimed: the smallest, but not what vanishes).
-            let (kind, boundary) = good
-                .worst
+            // claimed: the smallest, but not what vanishes): the last good
+            // trial's smallest where that one vanishes there (to
+            // `SAME_EVENT`), else the condition violated just beyond, on
+            // the first bad trial (a margin born at zero there, as an
+            // interior extremum entering its segment through an end: on
+            // `stribeck8` W=2.3:2.6 × Q0=1:3 a grazing curve's end was named
+            // a stick's vanishing by a stick lasting 8e-2 while a grazing
+            // margin born there was -1.7e-11 beyond).
+            let beyond = bad.as_ref().and_then(|b| {
+                if b.other < 0.0 {
+                    b.worst
+                } else {
+                    b.worst_event
+                }
+            });
+            let vanishes = good.other.abs() <= SAME_EVENT;
+            let named = if vanishes {
+                good.worst.or(beyond)
+            } else {
+                beyond.or(good.worst)
+            };
+            let (kind, boundary) = named
                 .or(good.worst_event)
-                .or(bad.as_ref().and_then(|b| b.worst))
                 .or(cand.worst)
                 .map_or((TransitionKind::Grazing, None), |(k, _, b)| {
                     (transition_kind(k), b)
