@@ -10,7 +10,9 @@
 //!
 //! Checked: every curve of the box ends on its edge or at a
 //! codimension-two point (the fold and the period doubling now end where
-//! the motion's stick vanishes). And independently: at every point of a
+//! the event search's stick end flips, the motion's equations turning
+//! singular there: README, "Other models", an open fault). And
+//! independently: at every point of a
 //! period-doubling curve whose condition is above 1e-10 of its scale, the
 //! motion re-solved by `PeriodicSolver` at parameters 1e-9 either side of
 //! the point (along `W` or along `Q0`) has its test function change sign:
