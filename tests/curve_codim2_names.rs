@@ -12,26 +12,19 @@
 //! static bound at an interior extremum (to 1e-6 of `1 + as`, sampled at
 //! 20 000 phases from the generated stick forces).
 
+mod common;
+
+use common::cycle::traced_wq;
 use stickslip::bifurcation::curve::CurveEndReason;
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck8::{self, Stribeck8};
-use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
 use stickslip::{FrictionOscillator, MappingKind, Model, ParamSet};
 
 #[test]
 fn an_end_named_a_stick_vanishing_has_a_stick_that_vanishes() {
     let base = stribeck8::Params::default();
-    let opts = CurvesOptions {
-        x: ("W".into(), [2.3, 2.6]),
-        y: ("Q0".into(), [1.0, 3.0]),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    };
-    let (_, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).expect("run");
-    let (iw, iq) = (
-        stribeck8::Params::index_of("W").unwrap(),
-        stribeck8::Params::index_of("Q0").unwrap(),
-    );
+    let (curves, plane) = traced_wq::<Stribeck8>(&base, [2.3, 2.6], [1.0, 3.0]);
+    let (iw, iq) = (plane.x, plane.y);
     let info = Stribeck8::INFO;
     let mut named = 0;
     for c in &curves {

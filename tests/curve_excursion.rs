@@ -17,33 +17,20 @@
 
 mod common;
 
-use common::cycle::{fold_ends, held, worst_residual};
-use stickslip::bifurcation::curve::{Condition, CurvePoint, Plane};
+use common::cycle::{fold_ends, held, traced_wq, worst_residual};
+use stickslip::bifurcation::curve::{Condition, CurvePoint};
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;
-use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
-use stickslip::{MappingKind, Model, ParamSet};
+use stickslip::{MappingKind, Model};
 
 #[test]
 fn a_curve_whose_excursion_between_sticks_vanishes_ends_at_the_period_doubling_it_was_born_at() {
     let base = stribeck8::Params::default();
-    let opts = CurvesOptions {
-        x: ("W".into(), [1.85, 1.95]),
-        y: ("Q0".into(), [4.45, 4.7]),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    };
-    let (_, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).expect("run");
+    let (curves, plane) = traced_wq::<Stribeck8>(&base, [1.85, 1.95], [4.45, 4.7]);
     let info = Stribeck8::INFO;
-    let plane = Plane {
-        x: stribeck8::Params::index_of("W").unwrap(),
-        y: stribeck8::Params::index_of("Q0").unwrap(),
-        x_range: [1.85, 1.95],
-        y_range: [4.45, 4.7],
-    };
     let mut solved = Vec::new();
     for (s, e) in fold_ends(&curves) {
         let pts = &e.at.points;

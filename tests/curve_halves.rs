@@ -16,15 +16,14 @@
 
 mod common;
 
-use common::cycle::{held, worst_residual};
-use stickslip::bifurcation::curve::{Condition, CurveEndReason, CurvePoint, Plane};
+use common::cycle::{held, traced_wq, worst_residual};
+use stickslip::bifurcation::curve::{Condition, CurveEndReason, CurvePoint};
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::periodic::{
     monodromy, NewtonOptions, PeriodicSolver, SwitchingPoint, Termination,
 };
 use stickslip::orbit::structure::Structure;
-use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
 use stickslip::{Model, ParamSet};
 
 /// The squared difference of the two halves of a motion of `periods`
@@ -44,19 +43,7 @@ fn apart(points: &[SwitchingPoint], periods: u32) -> f64 {
 fn a_fold_of_period_two_motions_whose_halves_merge_ends_on_the_period_doubling_of_the_half() {
     let base = stribeck8::Params::default();
     let (wr, qr) = ([2.3, 2.6], [1.0, 3.0]);
-    let opts = CurvesOptions {
-        x: ("W".into(), wr),
-        y: ("Q0".into(), qr),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    };
-    let (_, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).expect("run");
-    let plane = Plane {
-        x: stribeck8::Params::index_of("W").unwrap(),
-        y: stribeck8::Params::index_of("Q0").unwrap(),
-        x_range: wr,
-        y_range: qr,
-    };
+    let (curves, plane) = traced_wq::<Stribeck8>(&base, wr, qr);
     let info = Stribeck8::INFO;
     let mut found = 0;
     for c in &curves {

@@ -21,12 +21,11 @@
 
 mod common;
 
-use common::cycle::{held, other_ends};
-use stickslip::bifurcation::curve::{Condition, Plane};
+use common::cycle::{held, other_ends, traced_wq};
+use stickslip::bifurcation::curve::Condition;
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck::pl4::{self, Pl4};
 use stickslip::orbit::periodic::{monodromy, NewtonOptions, PeriodicSolver, Termination};
-use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
 use stickslip::ParamSet;
 
 /// How far either side of a point the test function is re-evaluated.
@@ -36,19 +35,7 @@ const SIDE: f64 = 1e-9;
 fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reach_the_box() {
     let base = pl4::Params::default();
     let (wr, qr) = ([0.92, 0.96], [4.8, 5.0]);
-    let opts = CurvesOptions {
-        x: ("W".into(), wr),
-        y: ("Q0".into(), qr),
-        seeds: Vec::new(),
-        at: Vec::new(),
-    };
-    let (_, curves) = traced::<Pl4>(&base, &opts, &CurvesSettings::default()).expect("run");
-    let plane = Plane {
-        x: pl4::Params::index_of("W").unwrap(),
-        y: pl4::Params::index_of("Q0").unwrap(),
-        x_range: wr,
-        y_range: qr,
-    };
+    let (curves, plane) = traced_wq::<Pl4>(&base, wr, qr);
     let other = other_ends::<Pl4>(&curves);
     assert!(other.is_empty(), "{other:#?}");
     let mut steep = 0;

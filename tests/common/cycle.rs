@@ -96,3 +96,31 @@ pub fn other_ends<M: Model>(curves: &[stickslip::bifurcation::curve::Curve]) -> 
         })
         .collect()
 }
+
+/// The curves of `M` over the box `W` × `Q0` (`w` × `q`) with the default
+/// settings, every other parameter from `base`, and that plane.
+pub fn traced_wq<M: Model>(
+    base: &M::Params,
+    w: [f64; 2],
+    q: [f64; 2],
+) -> (
+    Vec<stickslip::bifurcation::curve::Curve>,
+    stickslip::bifurcation::curve::Plane,
+) {
+    use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
+    use stickslip::ParamSet;
+    let opts = CurvesOptions {
+        x: ("W".into(), w),
+        y: ("Q0".into(), q),
+        seeds: Vec::new(),
+        at: Vec::new(),
+    };
+    let (_, curves) = traced::<M>(base, &opts, &CurvesSettings::default()).expect("run");
+    let plane = stickslip::bifurcation::curve::Plane {
+        x: M::Params::index_of("W").expect("W"),
+        y: M::Params::index_of("Q0").expect("Q0"),
+        x_range: w,
+        y_range: q,
+    };
+    (curves, plane)
+}
