@@ -12,7 +12,7 @@
 //! extrapolation of the traced fold points in the halves' squared
 //! difference, to zero difference, lies on `T`'s period-doubling curve
 //! (the motion re-solved there by `PeriodicSolver`, its `det(I + DP_T)`
-//! below 1e-8) and within 1e-8 of the end.
+//! below 1e-10) and within 1e-10 of the end (of the box).
 
 mod common;
 
@@ -112,7 +112,8 @@ fn a_fold_of_period_two_motions_whose_halves_merge_ends_on_the_period_doubling_o
             };
             let (w0, q0) = (lagrange(&|q| q.x), lagrange(&|q| q.y));
             let off = ((w0 - e.at.x) / (wr[1] - wr[0])).hypot((q0 - e.at.y) / (qr[1] - qr[0]));
-            assert!(off < 1e-8, "the end is {off:e} from the extrapolation");
+            // Measured 5.3e-13; a linear extrapolation is 4.2e-9 off.
+            assert!(off < 1e-10, "the end is {off:e} from the extrapolation");
             // `T` re-solved at the extrapolated parameters: a period doubling.
             let mut p = base;
             p.set(plane.x, w0);
@@ -127,7 +128,10 @@ fn a_fold_of_period_two_motions_whose_halves_merge_ends_on_the_period_doubling_o
             let shift = std::f64::consts::TAU * f64::from(t.periods());
             let dp = monodromy::<Stribeck8>(&p, t.steps(), shift, &pts).expect("DP");
             let v = 1.0 + dp.trace() + dp.determinant();
-            assert!(v.abs() < 1e-8, "det(I + DP_T) = {v:e} at the extrapolation");
+            assert!(
+                v.abs() < 1e-10,
+                "det(I + DP_T) = {v:e} at the extrapolation"
+            );
         }
     }
     assert_eq!(found, 1, "one fold curve ends so");
