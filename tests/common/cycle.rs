@@ -108,7 +108,6 @@ pub fn traced_wq<M: Model>(
     stickslip::bifurcation::curve::Plane,
 ) {
     use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
-    use stickslip::ParamSet;
     let opts = CurvesOptions {
         x: ("W".into(), w),
         y: ("Q0".into(), q),
@@ -116,11 +115,7 @@ pub fn traced_wq<M: Model>(
         at: Vec::new(),
     };
     let (_, curves) = traced::<M>(base, &opts, &CurvesSettings::default()).expect("run");
-    let plane = stickslip::bifurcation::curve::Plane {
-        x: M::Params::index_of("W").expect("W"),
-        y: M::Params::index_of("Q0").expect("Q0"),
-        x_range: w,
-        y_range: q,
-    };
+    // The box's plane as the run itself builds it.
+    let plane = opts.plane::<M>(base).expect("a valid box");
     (curves, plane)
 }
