@@ -10,6 +10,11 @@
 //! curve crawled 1.1e-2 of the box short of it ("the grazing margin of
 //! segment 13 on Sigma1 is 7.4e-8 there and falling").
 //!
+//! The box is W = 1.85…2.0 × Q0 = 4.4…4.7 since stop 29: the sweeps of
+//! the smaller W = 1.85…1.95 × Q0 = 4.45…4.7 no longer start that fold
+//! once the walk stopped reading a stick starting at `as` by rounding as
+//! one ending at once (`tests/stick_onset_start.rs`).
+//!
 //! Checked independently: `T`'s period-doubling curve, traced in the same
 //! run on its own condition, ends at the same point; and there `T`'s
 //! mapping equations, `det(I + DP)` and its stick's margin vanish, by the
@@ -29,7 +34,7 @@ use stickslip::{MappingKind, Model};
 #[test]
 fn a_curve_whose_excursion_between_sticks_vanishes_ends_at_the_period_doubling_it_was_born_at() {
     let base = stribeck8::Params::default();
-    let (curves, plane) = traced_wq::<Stribeck8>(&base, [1.85, 1.95], [4.45, 4.7]);
+    let (curves, plane) = traced_wq::<Stribeck8>(&base, [1.85, 2.0], [4.4, 4.7]);
     let info = Stribeck8::INFO;
     let mut solved = Vec::new();
     for (s, e) in fold_ends(&curves) {

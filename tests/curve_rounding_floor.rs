@@ -41,6 +41,7 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
     let mut steep = 0;
     let mut checked = 0;
     let mut eigen = 0;
+    let mut unsolved_far = 0.0f64;
     for c in &curves {
         // A period-doubling motion exists either side of its curve (a
         // fold's does not: its mapping equations turn singular there).
@@ -91,10 +92,19 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
                     crosses |= a * b < 0.0;
                 }
             }
+            // The distance (of the box) to the curve's nearest end.
+            let to_end = c
+                .ends
+                .iter()
+                .map(|e| ((e.at.x - q.x) / 0.04).hypot((e.at.y - q.y) / 0.2))
+                .fold(f64::INFINITY, f64::min);
             eprintln!(
-                "W = {} Q0 = {}: solved {solved} crosses {crosses}",
+                "W = {} Q0 = {}: solved {solved} crosses {crosses}, {to_end:e} from an end",
                 q.x, q.y
             );
+            if !solved {
+                unsolved_far = unsolved_far.max(to_end);
+            }
             if solved {
                 checked += 1;
                 assert!(
@@ -109,9 +119,10 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
     // The steep points this test is about: 7 when written, 6 of them
     // re-solved either side (the seventh is the end where the period
     // doubling meets the stick's vanishing, the motion's equations
-    // singular there).
+    // singular there); since stop 29 (finite differences at 1e-7) two of
+    // 7 are curve ends and not re-solved. Only an end may fail.
     assert!(
-        steep >= 5 && checked + 1 >= steep,
-        "{checked} of {steep} steep points re-solved"
+        steep >= 5 && checked + 2 >= steep && unsolved_far == 0.0,
+        "{checked} of {steep} steep points re-solved; one not re-solved lies {unsolved_far:e} from its curve's end"
     );
 }

@@ -192,12 +192,42 @@ fn sampled_conditions<M: Model>(
         }
         match (mi.kind, mi.domain) {
             (MappingKind::Stick, _) => {
+                // A stick that starts with |Fnf| beyond as and moving back
+                // inside fails its onset (that condition's margin), not its
+                // end: its end is searched from the first phase inside,
+                // found here by stepping 1e-12 of the stick's length at a
+                // time, doubling.
+                let vs = sim.velocity(mi.from);
+                let fnf = |phi: f64| {
+                    M::stick_forces(
+                        p,
+                        a.x + vs * (phi - a.phase) / M::oscillator(p).frequency,
+                        phi,
+                    )
+                    .map(|f| f.non_friction)
+                };
+                let bound = sim.stick().map_or(f64::INFINITY, |(_, s)| s);
+                let mut search_from = a.phase;
+                if let Some(f0) = fnf(a.phase).filter(|f| f.abs() > bound) {
+                    let mut h = 1e-12 * (b.phase - a.phase);
+                    while a.phase + h < b.phase {
+                        let f = fnf(a.phase + h).unwrap_or(f0);
+                        if f.abs() < bound {
+                            search_from = a.phase + h;
+                            break;
+                        }
+                        if f.abs() > f0.abs() {
+                            break;
+                        }
+                        h *= 2.0;
+                    }
+                }
                 let seg = Segment {
                     x: a.x,
-                    v: sim.velocity(mi.from),
+                    v: vs,
                     phase: a.phase,
                     location: Location::Stick,
-                    search_from: a.phase,
+                    search_from,
                 };
                 let (margin, what) = match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
                     Ok(Some((e, _))) if e.kind == EventKind::StickEnd => {
@@ -428,6 +458,20 @@ struct Tally {
     differs_from_sampled: Vec<String>,
 }
 
+/// The same text, but numbers equal to 1e-12 of their size: the walk and
+/// the dense reference find an event's phase by different arithmetic
+/// (since stop 29 their random point sets reach a flow crossing found at
+/// 7.610495939149074 and ...073).
+fn same_text(a: &str, b: &str) -> bool {
+    let (ta, tb): (Vec<&str>, Vec<&str>) = (a.split(' ').collect(), b.split(' ').collect());
+    ta.len() == tb.len()
+        && ta.iter().zip(&tb).all(|(x, y)| {
+            x == y
+                || matches!((x.parse::<f64>(), y.parse::<f64>()), (Ok(u), Ok(v))
+                    if (u - v).abs() <= 1e-12 * u.abs().max(1.0))
+        })
+}
+
 fn same(a: f64, b: f64, tol: f64) -> bool {
     (a.is_nan() && b.is_nan()) || a == b || (a - b).abs() <= tol
 }
@@ -462,7 +506,7 @@ fn compare<M: Model>(
         assert!(same(f.margin, d.margin, tol), "{at}");
         let violated = f.margin.is_nan() || f.margin <= 0.0;
         if violated {
-            assert_eq!(f.condition, d.condition, "{at}");
+            assert!(same_text(&f.condition, &d.condition), "{at}");
             tally.violated += 1;
         } else {
             assert!(f.condition.is_empty(), "{at}");

@@ -55,6 +55,20 @@ const HOLDS: f64 = 1e-13;
 /// Newton iterations.
 const FLOOR_FACTOR: f64 = 16.0;
 
+/// The central differences of the condition's row and of the mapping
+/// equations' parameter columns step this far in each unknown's natural
+/// unit (displacements over `L`, phases in radians, parameters relative).
+/// Their truncation error, not rounding, limited the corrector near
+/// strongly expanding motions: on `stribeck8`'s grazing curve of
+/// `7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77` at W = 0.9765 (`|λ| = 817`)
+/// a step of `1e-6` left the Jacobian 5 % off, Newton contracted by only
+/// 0.05 per iteration, and the step control (more than 5 iterations:
+/// shorter) crept along at 6.5e-8 of the box to the point limit; the two
+/// fold curves of `T'T` near W = 1.93 did the same. At `1e-7` the
+/// truncation error is 100 times smaller and the rounding error (about
+/// `1e-16 / 1e-7` of the condition's terms) still far below it.
+const FD_STEP: f64 = 1e-7;
+
 /// [`Extended::correct_pair`] stops after this many iterations without
 /// the merit halving, and takes the best iterate.
 const PAIR_STALL: usize = 8;
@@ -292,14 +306,15 @@ impl<M: Model> Extended<M> {
         (a, b)
     }
 
-    /// The finite-difference step of unknown `i` at `x`.
+    /// The finite-difference step of unknown `i` at `x` ([`FD_STEP`] in
+    /// the unknown's natural unit).
     fn fd_step(&self, x: &[f64], i: usize) -> f64 {
         if i >= 2 * self.m {
-            1e-6 * x[i].abs().max(1.0)
+            FD_STEP * x[i].abs().max(1.0)
         } else if i % 2 == 0 {
-            1e-6 * self.length
+            FD_STEP * self.length
         } else {
-            1e-6
+            FD_STEP
         }
     }
 

@@ -13,7 +13,10 @@ use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::TransitionKind;
 use crate::model::{MappingKind, Model};
 use crate::orbit::admissible::{ConditionId, ViolationKind, SAME_EVENT};
+use crate::orbit::periodic::SwitchingPoint;
 
+use super::condition::condition_scale;
+use super::extended::Extended;
 use super::trace::{Found, Sample, Tracer, HOLDS_TO};
 use super::{Condition, CurveEndReason};
 
@@ -39,6 +42,19 @@ const STALL_POINTS: usize = 48;
 /// smallest steps crawls ([`Tracer::stalled`]): at that pace the point
 /// limit comes long before the curve gets anywhere.
 const CRAWL_STEPS: f64 = 100.0;
+
+/// Over how many accepted steps a curve that moves the parameters by less
+/// than [`CREEP_SPAN`] of the box creeps ([`Tracer::stalled`]).
+const CREEP_POINTS: usize = 400;
+
+/// A curve whose last [`CREEP_POINTS`] steps move the parameters by less
+/// than this (in the plane, each parameter over its span) creeps: at that
+/// pace it needs some 4e5 points to cross the box. Such a curve advances
+/// by steps far above the smallest, so the crawl test misses it, and it
+/// ran on to the point limit: on `stribeck8` W=0.5:3 × Q0=4.6:4.8 a
+/// grazing curve of a 15-mapping motion took 1750 steps of 1e-7…1e-6 of
+/// the box near W = 1.3028, Q0 = 4.686, 2.5e-5 in W together.
+const CREEP_SPAN: f64 = 1e-3;
 
 /// A margin that falls to less than this fraction of itself over the last
 /// [`TREND_POINTS`] steps is vanishing ([`Tracer::falling_other`]). On the
@@ -90,8 +106,9 @@ impl<M: Model> Tracer<'_, M> {
     /// segment ([`Self::tangency_point`]) or where an excursion of the
     /// motion vanishes ([`Self::excursion_point`]);
     /// otherwise `prev` is the end if that extrapolation (in the scaled
-    /// metric) reaches zero within [`CODIM2_REACH`] smallest steps. `None`:
-    /// a plain failure.
+    /// metric) reaches zero within [`CODIM2_REACH`] smallest steps, or the
+    /// margin already holds there ([`Self::holds_other`]). `None`: a plain
+    /// failure.
     fn vanishing_other(
         &mut self,
         points: &[Sample],
@@ -132,10 +149,40 @@ impl<M: Model> Tracer<'_, M> {
         if let Some(at) = self.excursion_point(prev, bound) {
             return Some((reason, at));
         }
-        if reach > CODIM2_REACH * self.opts.min_step {
+        if reach > CODIM2_REACH * self.opts.min_step && !self.holds_other(prev) {
             return None;
         }
         Some((reason, prev.clone()))
+    }
+
+    /// Whether the smallest other margin at `prev` holds as a curve
+    /// point's own condition must (to [`HOLDS_TO`] of its scale,
+    /// [`condition_scale`]): then `prev` satisfies both conditions and is
+    /// the codimension-two point, however the margin falls. On the Shaw
+    /// case (`coulomb` W=0.3:1.2 × Q0=0.5:2, `bash benches/curves-runs.sh
+    /// shaw`) a grazing curve of a 24-mapping motion reached a passable
+    /// onset's margin of 8.8e-11 (of a scale near 1) where the pair solve
+    /// failed, the system singular there, and the extrapolated reach was
+    /// still above [`CODIM2_REACH`] smallest steps.
+    fn holds_other(&self, prev: &Sample) -> bool {
+        let (Some((kind, segment, boundary)), Some(structure)) =
+            (prev.worst, self.sys.eval.structure.as_ref())
+        else {
+            return false;
+        };
+        if !(prev.other >= 0.0) {
+            return false;
+        }
+        let m = (prev.x.len() - 2) / 2;
+        let mut pts = vec![SwitchingPoint { phase: 0.0, x: 0.0 }; m];
+        Extended::<M>::points_into(&prev.x, &mut pts);
+        let p = self.sys.params(&prev.x);
+        let condition = Condition::Margin {
+            kind,
+            segment,
+            boundary,
+        };
+        prev.other <= HOLDS_TO * condition_scale::<M>(&p, condition, Some(structure), &pts)
     }
 
     /// Whether the smallest other margin at `prev` (the last of `points`)
@@ -206,7 +253,9 @@ impl<M: Model> Tracer<'_, M> {
     /// leaves its segment through an arrival that turns tangential), or
     /// together covered less than [`CRAWL_STEPS`] smallest steps each
     /// (every longer step fails, as where the curve's condition is defined
-    /// on a narrowing sliver: [`Self::falling_other`]). Any way it would
+    /// on a narrowing sliver: [`Self::falling_other`]), or the last
+    /// [`CREEP_POINTS`] steps moved the parameters by less than
+    /// [`CREEP_SPAN`] of the box. Any way it would
     /// crawl on to the point limit; it ends there, at a
     /// codimension-two point if one is solved ([`Self::vanishing_other`]).
     pub(super) fn stalled(&self, points: &[Sample], at_min: usize) -> Option<String> {
@@ -231,9 +280,16 @@ impl<M: Model> Tracer<'_, M> {
         let k = a.len();
         let tol = self.opts.location_tolerance;
         let moved = (a[k - 2] - b[k - 2]).abs().max((a[k - 1] - b[k - 1]).abs());
-        (moved < tol).then(|| {
-            format!(
+        if moved < tol {
+            return Some(format!(
                 "the curve stalls: its last {STALL_POINTS} steps move the parameters by {moved:.1e}, less than the location tolerance {tol:.0e}"
+            ));
+        }
+        let n = points.len().checked_sub(CREEP_POINTS + 1)?;
+        let crept = self.plane_distance(&points[n].x, &points[points.len() - 1].x);
+        (crept < CREEP_SPAN).then(|| {
+            format!(
+                "the curve creeps: its last {CREEP_POINTS} steps move the parameters by {crept:.1e} of the box together, less than {CREEP_SPAN:.0e}"
             )
         })
     }

@@ -26,7 +26,7 @@ use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::detect;
 use crate::bifurcation::TransitionKind;
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::{ConditionId, SAME_EVENT};
+use crate::orbit::admissible::{ConditionId, ViolationKind, SAME_EVENT};
 use crate::orbit::periodic::monodromy;
 use crate::orbit::stability::Stability;
 
@@ -283,6 +283,13 @@ impl<M: Model> Tracer<'_, M> {
         out
     }
 
+    /// How far (in the plane, each parameter over its span) a codimension-two
+    /// end located on an arrival's or departure's sign change may lie from
+    /// the tangential point it approximates ([`Self::codim2`]): that margin's
+    /// zero is double there, so rounding and the finite differences move
+    /// its sign change by about the square root of their error.
+    const TANGENCY_REACH: f64 = 1e-5;
+
     /// A codimension-two end between `prev` and `cand` (at arclength
     /// `s_c`), located, with its kind and boundary.
     fn codim2(
@@ -338,12 +345,32 @@ impl<M: Model> Tracer<'_, M> {
             // already, to the location tolerance, it stays the end.
             let tol = self.opts.location_tolerance;
             let n = good.x.len();
-            let good = if good.other.is_nan() || good.other <= 0.0 {
+            // Within a few of the step's lengths in the plane (no bracket:
+            // the candidate may lie on another root).
+            let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);
+            // An arrival (or departure) lost on a grazing curve may be one
+            // turning tangential, where the grazed extremum merges into it:
+            // that margin has a double zero there, and the bracket on its
+            // sign closes short of the point (on `stribeck8` W=2.3:2.6 ×
+            // Q0=1:3, 8e-8 before it, the field there 1.2e-9 and its rate
+            // 4.4e-4): the point where the field and its rate vanish
+            // ([`Self::tangency_point`]) is the end if it lies ahead, within
+            // [`Self::TANGENCY_REACH`] of the box (the steps there are shorter
+            // than that sign change's offset: 3e-9 of the box there).
+            let tangential = matches!(
+                named.map(|(k, _, _)| k),
+                Some(ViolationKind::Arrival | ViolationKind::Departure)
+            );
+            let tangency = if tangential {
+                self.tangency_point(&good, bound.max(Self::TANGENCY_REACH))
+            } else {
+                None
+            };
+            let good = if let Some(at) = tangency {
+                at
+            } else if good.other.is_nan() || good.other <= 0.0 {
                 good
             } else {
-                // Within a few of the step's lengths in the plane (no
-                // bracket: the candidate may lie on another root).
-                let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);
                 match self.pair_point(&good, bound) {
                     Some(at)
                         if (at.x[n - 2] - good.x[n - 2]).abs() > tol

@@ -387,12 +387,14 @@ fn walk<M: Model>(
             }
             (MappingKind::Stick, _) => {
                 // |Fnf| < as during the stick: the first stick end is the one claimed.
+                // A start beyond `as` moving back inside is the stick
+                // onset's condition, not an early end (`stick::search_start`).
                 let seg = Segment {
                     x: a.x,
                     v: sim.velocity(mi.from),
                     phase: a.phase,
                     location: Location::Stick,
-                    search_from: a.phase,
+                    search_from: stick::search_start(sim, mi.from, a.x, a.phase, b.phase),
                 };
                 let event = sim.next_event(&seg, b.phase + phase_tol(b.phase));
                 let (margin, exit_ok) = match &event {
@@ -482,7 +484,7 @@ fn walk<M: Model>(
                     v: va,
                     phase: a.phase,
                     location: Location::Domain(j),
-                    search_from: a.phase,
+                    search_from: stick::search_start(sim, mi.from, a.x, a.phase, b.phase),
                 };
                 let check =
                     SegmentFlow::new(sim.oscillator(), sim.coefficients(j), a.x, va, a.phase).map(

@@ -115,3 +115,61 @@ pub(crate) fn early_end<M: Model>(
     }
     best
 }
+
+/// Where the event search of the stick on boundary `k` from `(x_a, φ_a)`
+/// to `phi_b` starts: `φ_a`, unless the stick starts with `|Fnf|` beyond
+/// `as` and moving back inside (`Fnf` above `+as` and falling, or below
+/// `−as` and rising), and is inside again before `phi_b`; then the first
+/// phase found inside (stepping from `φ_a + 2 e / |dFnf/dφ|`, `e` the
+/// excess, doubling the step). The simulator ends such a stick at once,
+/// and the walk would report that as the stick ending early; but its start
+/// beyond `as` is the stick onset's own condition (`F_in above < 0 <
+/// F_in below`, which with `as = ak` is `|Fnf| < as` at the same point),
+/// measured by that condition's margin. On a passable-onset curve of an
+/// `as = ak` law the start is at `as` to rounding all along the curve, and
+/// the immediate end flipped the walk's smallest margin from the stick's
+/// phase tolerance to minus its length from one point to the next
+/// (`stribeck8`, W = 1.18, Q0 = 6.45: +3.9e-7 to −0.42), taken for a
+/// codimension-two point.
+pub(super) fn search_start<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> f64 {
+    let Some((stick, bound)) = sim.stick() else {
+        return phi_a;
+    };
+    let Some(f0) = M::stick_forces(sim.params(), x_a, phi_a).map(|f| f.non_friction) else {
+        return phi_a;
+    };
+    if stick != k || !(f0.abs() > bound) {
+        return phi_a;
+    }
+    let osc = sim.oscillator();
+    let (a0, c, w) = (osc.amplitude, osc.stiffness, osc.frequency);
+    let vs = sim.velocity(k);
+    let rate = -a0 * phi_a.sin() - c * vs / w;
+    if !(rate * f0.signum() < 0.0) {
+        return phi_a;
+    }
+    let excess = f0.abs() - bound;
+    let mut step = 2.0 * excess / rate.abs();
+    for _ in 0..60 {
+        let phi = phi_a + step;
+        if !(phi < phi_b) {
+            break;
+        }
+        if phi > phi_a {
+            let x = x_a + vs * (phi - phi_a) / w;
+            match M::stick_forces(sim.params(), x, phi) {
+                Some(f) if f.non_friction.abs() < bound => return phi,
+                Some(_) => {}
+                None => break,
+            }
+        }
+        step = 2.0 * step.max(f64::EPSILON * phi_a.abs().max(1.0));
+    }
+    phi_a
+}
