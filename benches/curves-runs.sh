@@ -1,22 +1,23 @@
 #!/usr/bin/env bash
-# The six `curves` runs the README's "Regime maps" section quotes, each run
+# The seven `curves` runs the README's "Regime maps" section quotes, each run
 # alone and timed (wall), with its counts: curves, codimension-two points,
 # and ends that are neither on the box's edge nor at a codimension-two
 # point (a corrector failure, a crawl, the point limit).
 #
-#   benches/curves-runs.sh            # all six (about 2 minutes)
+#   benches/curves-runs.sh            # all seven (pl4 takes most of the time)
 #   benches/curves-runs.sh s8box      # one of them, by name
 #   EXTRA="--probes 4" benches/curves-runs.sh fig11   # with more options
+#   BIN=/tmp/old/stickslip OUT=/tmp/old-runs benches/curves-runs.sh  # another build
 #
-# The JSON of each run is kept in target/curves-runs/NAME.json.
+# The JSON of each run is kept in target/curves-runs/NAME.json (or OUT).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-out="target/curves-runs"
+out="${OUT:-target/curves-runs}"
 mkdir -p "$out"
-cargo build --release --quiet
-bin="target/release/stickslip"
+if [ -z "${BIN:-}" ]; then cargo build --release --quiet; fi
+bin="${BIN:-target/release/stickslip}"
 
 run() {
     local name=$1
@@ -45,3 +46,4 @@ run shaw --model coulomb --x W=0.3:1.2 --y Q0=0.5:2 --set V=0,d=0,mus=0.45,muk=0
 run s8box --model stribeck8 --x W=2.3:2.6 --y Q0=1:3
 run s8full --model stribeck8 --x W=0.5:3 --y Q0=1:12
 run mm40 --model paper --x W=5:8 --y Q0=20:60 --max-mappings 40
+run pl4 --model stribeck::pl4 --x W=0.5:3 --y Q0=1:12

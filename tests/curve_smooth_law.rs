@@ -380,32 +380,22 @@ fn the_sweep_command_takes_the_cap() {
 /// the tangential departure of the segment (`1_21` after a pass through
 /// `Sigma1`): its condition is defined on a sliver that narrows towards the
 /// codimension-two point, and every step longer than a few smallest ones
-/// leaves it. It crawled to the point limit (2000 points of 5e-9); it now
-/// ends where its last 48 steps cover less than 100 smallest steps each,
-/// and says which margin vanishes ahead.
+/// leaves it. It crawled to the point limit (2000 points of 5e-9); then it
+/// ended crawling (its last 48 steps under 100 smallest steps each), short
+/// of the point. Since stop 29 (finite differences at 1e-7, a margin that
+/// already holds ending the curve) it reaches that point, and so does every
+/// other curve of the box: no end but the box's edge and codimension-two
+/// points, none crawling, none at the point limit.
 #[test]
-fn a_crawling_curve_ends_and_says_why() {
+fn the_sliver_curve_that_crawled_reaches_its_codim2_point() {
     let set = curves_of([0.5, 3.0], [4.6, 4.8]);
-    let mut crawled = 0;
-    for c in &set.curves {
-        for e in [&c.from, &c.to].into_iter().flatten() {
-            assert_ne!(e.reason, "max_points", "{:?} {}", c.kind, c.structure);
-            if e.detail.as_deref().is_some_and(|d| d.contains("crawls")) {
-                crawled += 1;
-                assert!(c.points.len() < 1000, "{} points", c.points.len());
-            }
-        }
-    }
-    // Since stop 29 (finite differences at 1e-7, creeping curves ended)
-    // the crawling curve of this box ends at its codimension-two point,
-    // and so does every other.
     let other: Vec<_> = set
         .curves
         .iter()
         .flat_map(|c| [&c.from, &c.to].into_iter().flatten())
         .filter(|e| e.reason != "box_edge" && e.reason != "codim2")
         .collect();
-    assert!(other.is_empty() && crawled == 0, "{other:#?}");
+    assert!(other.is_empty(), "{other:#?}");
 }
 
 /// The Shaw case of `coulomb` (`V = 0`, `d = 0`, `mus = 0.45`,

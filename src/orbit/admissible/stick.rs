@@ -116,21 +116,26 @@ pub(crate) fn early_end<M: Model>(
     best
 }
 
-/// Where the event search of the stick on boundary `k` from `(x_a, φ_a)`
-/// to `phi_b` starts: `φ_a`, unless the stick starts with `|Fnf|` beyond
-/// `as` and moving back inside (`Fnf` above `+as` and falling, or below
-/// `−as` and rising), and is inside again before `phi_b`; then the first
-/// phase found inside (stepping from `φ_a + 2 e / |dFnf/dφ|`, `e` the
-/// excess, doubling the step). The simulator ends such a stick at once,
-/// and the walk would report that as the stick ending early; but its start
-/// beyond `as` is the stick onset's own condition (`F_in above < 0 <
-/// F_in below`, which with `as = ak` is `|Fnf| < as` at the same point),
-/// measured by that condition's margin. On a passable-onset curve of an
-/// `as = ak` law the start is at `as` to rounding all along the curve, and
-/// the immediate end flipped the walk's smallest margin from the stick's
-/// phase tolerance to minus its length from one point to the next
-/// (`stribeck8`, W = 1.18, Q0 = 6.45: +3.9e-7 to −0.42), taken for a
-/// codimension-two point.
+/// Where the event search of a segment that starts on the stick boundary
+/// `k` at `(x_a, φ_a)` and ends at `phi_b` starts: `φ_a`, unless `|Fnf|`
+/// starts beyond `as` and moving back inside (`Fnf` above `+as` and
+/// falling, or below `−as` and rising), and is inside again before
+/// `phi_b`; then the first phase inside (found stepping from
+/// `φ_a + 2 e / |dFnf/dφ|`, `e` the excess, doubling the step, then
+/// bisected to rounding).
+///
+/// For a stick: the simulator ends such a stick at once, and the walk
+/// would report that as the stick ending early; but its start beyond `as`
+/// is the stick onset's own condition (`F_in above < 0 < F_in below`,
+/// which with `as = ak` is `|Fnf| < as` at the same point), measured by
+/// that condition's margin. On a passable-onset curve of an `as = ak` law
+/// the start is at `as` to rounding all along the curve, and the immediate
+/// end flipped the walk's smallest margin from the stick's phase tolerance
+/// to minus its length from one point to the next (`stribeck8`, W = 1.18,
+/// Q0 = 6.45: +3.9e-7 to −0.42), taken for a codimension-two point. For a
+/// flow leaving `k` (a pass) the same start keeps the search from reading
+/// the flow's own start, where `|Fnf|` turns inside, as an arrival that
+/// sticks: the pass's criterion there is the pass's margin.
 pub(super) fn search_start<M: Model>(
     sim: &Simulator<M>,
     k: usize,
@@ -154,22 +159,46 @@ pub(super) fn search_start<M: Model>(
     if !(rate * f0.signum() < 0.0) {
         return phi_a;
     }
+    let inside = |phi: f64| {
+        let x = x_a + vs * (phi - phi_a) / w;
+        M::stick_forces(sim.params(), x, phi).map(|f| f.non_friction.abs() < bound)
+    };
     let excess = f0.abs() - bound;
     let mut step = 2.0 * excess / rate.abs();
+    // The last phase known outside, and the first found inside.
+    let mut outside = phi_a;
+    let mut found = None;
     for _ in 0..60 {
         let phi = phi_a + step;
         if !(phi < phi_b) {
             break;
         }
         if phi > phi_a {
-            let x = x_a + vs * (phi - phi_a) / w;
-            match M::stick_forces(sim.params(), x, phi) {
-                Some(f) if f.non_friction.abs() < bound => return phi,
-                Some(_) => {}
+            match inside(phi) {
+                Some(true) => {
+                    found = Some(phi);
+                    break;
+                }
+                Some(false) => outside = phi,
                 None => break,
             }
         }
         step = 2.0 * step.max(f64::EPSILON * phi_a.abs().max(1.0));
     }
-    phi_a
+    let Some(mut first) = found else {
+        return phi_a;
+    };
+    // Bisected to rounding: the doubling may overshoot the re-entry by
+    // up to its last step, and the search must not skip what lies there.
+    loop {
+        let mid = 0.5 * (outside + first);
+        if !(mid > outside && mid < first) {
+            return first;
+        }
+        match inside(mid) {
+            Some(true) => first = mid,
+            Some(false) => outside = mid,
+            None => return first,
+        }
+    }
 }
