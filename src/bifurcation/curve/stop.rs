@@ -170,7 +170,7 @@ impl<M: Model> Tracer<'_, M> {
         else {
             return false;
         };
-        if !(prev.other >= 0.0) {
+        if prev.other.is_nan() || prev.other < 0.0 {
             return false;
         }
         let m = (prev.x.len() - 2) / 2;

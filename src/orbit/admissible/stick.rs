@@ -23,6 +23,7 @@ use crate::dynamics::simulate::Simulator;
 use crate::model::{MappingKind, Model};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
+use std::cmp::Ordering;
 
 /// The margin of the stick on boundary `k` from `(x_a, φ_a)` to phase
 /// `phi_b` against an early end (see the module): the smallest over its
@@ -149,14 +150,14 @@ pub(super) fn search_start<M: Model>(
     let Some(f0) = M::stick_forces(sim.params(), x_a, phi_a).map(|f| f.non_friction) else {
         return phi_a;
     };
-    if stick != k || !(f0.abs() > bound) {
+    if stick != k || f0.abs().partial_cmp(&bound) != Some(Ordering::Greater) {
         return phi_a;
     }
     let osc = sim.oscillator();
     let (a0, c, w) = (osc.amplitude, osc.stiffness, osc.frequency);
     let vs = sim.velocity(k);
     let rate = -a0 * phi_a.sin() - c * vs / w;
-    if !(rate * f0.signum() < 0.0) {
+    if (rate * f0.signum()).partial_cmp(&0.0) != Some(Ordering::Less) {
         return phi_a;
     }
     let inside = |phi: f64| {
@@ -170,7 +171,7 @@ pub(super) fn search_start<M: Model>(
     let mut found = None;
     for _ in 0..60 {
         let phi = phi_a + step;
-        if !(phi < phi_b) {
+        if phi.partial_cmp(&phi_b) != Some(Ordering::Less) {
             break;
         }
         if phi > phi_a {
