@@ -100,8 +100,7 @@ pub(crate) fn early_end<M: Model>(
             if phi >= phi_b {
                 break;
             }
-            let x = x_a + vs * (phi - phi_a) / w;
-            let f = M::stick_forces(sim.params(), x, phi)?.non_friction;
+            let f = force_along(sim, k, x_a, phi_a, phi)?;
             // d²Fnf/dφ² = −A0 cos φ*: negative at a maximum.
             let curvature = -a0 * phi.cos();
             let margin = if curvature < 0.0 {
@@ -147,7 +146,7 @@ pub(super) fn search_start<M: Model>(
     let Some((stick, bound)) = sim.stick() else {
         return phi_a;
     };
-    let Some(f0) = M::stick_forces(sim.params(), x_a, phi_a).map(|f| f.non_friction) else {
+    let Some(f0) = force_along(sim, k, x_a, phi_a, phi_a) else {
         return phi_a;
     };
     if stick != k || f0.abs().partial_cmp(&bound) != Some(Ordering::Greater) {
@@ -160,10 +159,7 @@ pub(super) fn search_start<M: Model>(
     if (rate * f0.signum()).partial_cmp(&0.0) != Some(Ordering::Less) {
         return phi_a;
     }
-    let inside = |phi: f64| {
-        let x = x_a + vs * (phi - phi_a) / w;
-        M::stick_forces(sim.params(), x, phi).map(|f| f.non_friction.abs() < bound)
-    };
+    let inside = |phi: f64| force_along(sim, k, x_a, phi_a, phi).map(|f| f.abs() < bound);
     let excess = f0.abs() - bound;
     let mut step = 2.0 * excess / rate.abs();
     // The last phase known outside, and the first found inside.
@@ -202,4 +198,17 @@ pub(super) fn search_start<M: Model>(
             None => return first,
         }
     }
+}
+
+/// `Fnf` at phase `phi` of the stick on boundary `k` that starts at
+/// `(x_a, φ_a)`: the mass moves with the belt, `x = x_a + v_k (φ − φ_a) / W`.
+fn force_along<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi: f64,
+) -> Option<f64> {
+    let x = x_a + sim.velocity(k) * (phi - phi_a) / sim.oscillator().frequency;
+    M::stick_forces(sim.params(), x, phi).map(|f| f.non_friction)
 }
