@@ -9,7 +9,7 @@ use serde_json::{json, Map, Value};
 use crate::study::curves::{CurveSet, CurveSummary, EndSummary};
 
 /// The keys of the ends and codim-2 points, which a parameter's name must not be.
-const KEYS: [&str; 5] = ["end", "codim2", "detail", "kinds", "curves"];
+const KEYS: [&str; 6] = ["end", "codim2", "detail", "residual", "kinds", "curves"];
 
 fn clash(name: &str) -> serde_json::Error {
     serde::ser::Error::custom(format!(
@@ -32,6 +32,9 @@ fn end_json(set: &CurveSet, end: &Option<EndSummary>) -> Value {
     }
     if let Some(d) = &e.detail {
         o.insert("detail".into(), json!(d));
+    }
+    if let Some(r) = e.residual {
+        o.insert("residual".into(), json!(r));
     }
     Value::Object(o)
 }
@@ -80,6 +83,11 @@ pub fn json(set: &CurveSet) -> Result<String, serde_json::Error> {
     }))
 }
 
+/// A codimension-two end whose second condition holds to more than this
+/// (relative to its scale) is said, in the text, to be located only
+/// approximately.
+const APPROXIMATE: f64 = 1e-8;
+
 fn end_text(set: &CurveSet, end: &Option<EndSummary>) -> String {
     let Some(e) = end else {
         return "closed".into();
@@ -90,6 +98,12 @@ fn end_text(set: &CurveSet, end: &Option<EndSummary>) -> String {
     );
     if let Some(k) = e.codim2 {
         let _ = write!(s, " (codim-2 point {k})");
+    }
+    if let Some(r) = e.residual.filter(|&r| r > APPROXIMATE) {
+        let _ = write!(
+            s,
+            " (located only approximately: the second condition holds there to {r:.1e} of its scale)"
+        );
     }
     if let Some(d) = &e.detail {
         let _ = write!(s, " ({d})");
@@ -172,6 +186,7 @@ mod tests {
             point: [1.5, 40.0],
             codim2,
             detail: None,
+            residual: None,
         };
         CurveSet {
             x: ("W".into(), [0.2, 8.0]),

@@ -51,7 +51,9 @@ mod trace;
 pub use condition::condition_scale;
 pub use crossing::crossings;
 pub use extended::Extended;
-pub use start::{condition_at_transition, condition_value, system, trace, unknowns};
+pub use start::{
+    codim2_residual, condition_at_transition, condition_value, system, trace, unknowns,
+};
 
 use crate::bifurcation::TransitionKind;
 use crate::orbit::admissible::ViolationKind;

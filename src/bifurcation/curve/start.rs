@@ -376,6 +376,105 @@ pub fn condition_value<M: Model>(
     Ok(v)
 }
 
+/// How well the second condition holds at a codimension-two end of
+/// `curve` (its own condition holds there as at every point of the curve):
+/// over the motion's conditions that mark the end's kind (on its boundary,
+/// if it names one), other than the curve's own, the smallest
+/// `|margin| / scale` ([`condition_scale`](super::condition_scale)); for a
+/// fold, period doubling or Neimark–Sacker end, the test function's over
+/// its scale. `None` for another end, for the no-motion regime's curves,
+/// or if no such condition is evaluable there. Near 0 (rounding): both
+/// conditions vanish at the reported point; larger: the end was located
+/// only to where the curve could be followed (a cascade's accumulation,
+/// where the curve's system turns singular), and this says how far.
+pub fn codim2_residual<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    curve: &Curve,
+    end: &CurveEnd,
+) -> Option<f64> {
+    let super::CurveEndReason::Codim2 { kind, boundary } = end.reason else {
+        return None;
+    };
+    let structure = curve.structure.as_ref()?;
+    let mut p = base.clone();
+    p.set(plane.x, end.at.x);
+    p.set(plane.y, end.at.y);
+    let scaled = |c: Condition, v: f64| {
+        (v / super::condition_scale::<M>(&p, c, Some(structure), &end.at.points)).abs()
+    };
+    if matches!(
+        kind,
+        TransitionKind::Fold
+            | TransitionKind::BranchPoint
+            | TransitionKind::PeriodDoubling
+            | TransitionKind::NeimarkSacker
+    ) {
+        let c = Condition::Eigen(kind);
+        let v = condition_value::<M>(base, plane, Some(structure), &end.at, c).ok()?;
+        return Some(scaled(c, v).min(halves_residual::<M>(base, plane, curve, end, &p)));
+    }
+    // Which conditions the motion has, from the admissibility walk; each
+    // measured as a curve measures it (a stick's end by its smooth margin,
+    // not the event search's phase difference).
+    let sim = Simulator::<M>::new(p.clone(), SimOptions::default()).ok()?;
+    admissible::conditions(&sim, structure, &end.at.points)
+        .into_iter()
+        .filter(|c| {
+            transition_kind(c.kind) == kind && (boundary.is_none() || c.boundary == boundary)
+        })
+        .map(|c| Condition::Margin {
+            kind: c.kind,
+            segment: c.segment,
+            boundary: c.boundary,
+        })
+        .filter(|&cond| cond != curve.condition)
+        .filter_map(|cond| {
+            let v = condition_value::<M>(base, plane, Some(structure), &end.at, cond).ok()?;
+            Some(scaled(cond, v))
+        })
+        .min_by(f64::total_cmp)
+}
+
+/// At a period-doubling end of a fold curve of `T T` (two equal halves,
+/// `super::halves`): `T`'s period-doubling test function on the first
+/// half over its scale; `∞` for any other end.
+fn halves_residual<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    curve: &Curve,
+    end: &CurveEnd,
+    p: &M::Params,
+) -> f64 {
+    let pd = Condition::Eigen(TransitionKind::PeriodDoubling);
+    let half = || {
+        let structure = curve.structure.as_ref()?;
+        let steps = structure.steps();
+        let h = steps.len() / 2;
+        let halves = curve.condition == Condition::Eigen(TransitionKind::Fold)
+            && end.reason
+                == (super::CurveEndReason::Codim2 {
+                    kind: TransitionKind::PeriodDoubling,
+                    boundary: None,
+                })
+            && h > 0
+            && steps.len() % 2 == 0
+            && structure.periods() % 2 == 0
+            && steps[..h] == steps[h..];
+        if !halves {
+            return None;
+        }
+        let t = Structure::from_indices(M::INFO, &steps[..h], structure.periods() / 2).ok()?;
+        let at = CurvePoint {
+            points: end.at.points[..h].to_vec(),
+            ..end.at.clone()
+        };
+        let v = condition_value::<M>(base, plane, Some(&t), &at, pd).ok()?;
+        Some((v / super::condition_scale::<M>(p, pd, Some(&t), &at.points)).abs())
+    };
+    half().unwrap_or(f64::INFINITY)
+}
+
 /// Which condition vanishes at a transition of kind `kind` located on a
 /// branch of `structure` at parameters `p` with switching points `points`.
 ///

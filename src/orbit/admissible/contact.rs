@@ -6,11 +6,12 @@ use crate::dynamics::simulate::{Event, EventKind, Segment, SimError, Simulator};
 use crate::model::Model;
 
 /// The first boundary contact of the flow of `seg` before `limit` that is
-/// not a graze the closed form puts strictly inside (`keeps_off`: by a
-/// margin within the band where the event search is asked): such a graze
-/// is a touch within the event search's graze tolerance (`|v − V_k|` at the
-/// extremum below `graze_tol`) of an extremum that the closed form, exact
-/// to rounding, keeps off the boundary by a positive margin. The margin is
+/// not a graze the closed form puts strictly inside (`keeps_off`: by any
+/// positive margin): such a graze is a touch within the event search's
+/// graze tolerance (`|v − V_k|` at the extremum below `graze_tol`) of an
+/// extremum that the closed form, exact to rounding, keeps off the
+/// boundary by a positive margin, or a slow departure from the boundary
+/// read as a graze. The margin is
 /// then the closed form's, positive, like on either side of that tolerance
 /// band: were the graze taken as an early contact (margin 0), the margin a
 /// sweep locates its transition on would be 0 on a band of width

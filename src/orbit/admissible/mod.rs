@@ -146,10 +146,8 @@ struct FlowCheck {
     arrives: bool,
     /// The domain's lower and upper boundary (indices), each with the
     /// smallest margin of the closed form on it alone (infinite: none
-    /// counts), and the band within which the event search decides
-    /// (`near` of [`check_flow`]).
+    /// counts).
     sides: [(Option<usize>, f64); 2],
-    near: f64,
 }
 
 impl FlowCheck {
@@ -162,12 +160,19 @@ impl FlowCheck {
     }
 
     /// Whether the closed form keeps the flow strictly inside, off boundary
-    /// `k`, by a margin within the band where the event search is asked
-    /// (see `contact::first_contact`).
+    /// `k` (see `contact::first_contact`): any positive margin. Within the
+    /// band where the event search decides (`near` of [`check_flow`]) a
+    /// graze it reports there is a touch within its graze tolerance; beyond
+    /// it, the flow's slow departure from `k` read as a graze. On `coulomb`
+    /// with `V = 0, d = 0` a flow leaving the stick boundary on a
+    /// stick-onset curve (accelerating at 6.3e-3 from it) was read as
+    /// grazing it 1e-6 after the start at some points of the curve, where
+    /// the closed form keeps it off by 0.77: its margin flipped from 0.77
+    /// to 0 from one point to the next, and the curve ended there at a
+    /// codimension-two point that held its second condition only to
+    /// 2.5e-3 of its scale (`bash benches/curves-runs.sh shaw`).
     fn keeps_off(&self, k: usize) -> bool {
-        self.sides
-            .iter()
-            .any(|&(b, m)| b == Some(k) && m > 0.0 && m <= self.near)
+        self.sides.iter().any(|&(b, m)| b == Some(k) && m > 0.0)
     }
 }
 
@@ -249,7 +254,6 @@ fn check_flow<M: Model>(
         interior,
         arrives,
         sides: [(dom.lower, sides[0]), (dom.upper, sides[1])],
-        near,
     }
 }
 

@@ -18,7 +18,9 @@
 //! probe crosses stays unseen: an isola smaller than the spacing of the
 //! lines and away from every line and curve is not found.
 
-use crate::bifurcation::curve::{crossings, trace, Curve, CurveEndReason, Line, Plane};
+use crate::bifurcation::curve::{
+    codim2_residual, crossings, trace, Curve, CurveEndReason, Line, Plane,
+};
 use crate::model::Model;
 use crate::orbit::structure::Structure;
 use crate::study::sweep::SweepOptions;
@@ -414,6 +416,7 @@ impl<'a, M: Model> Cover<'a, M> {
                         point: [e.at.x, e.at.y],
                         codim2,
                         detail,
+                        residual: codim2_residual::<M>(self.base, &self.plane, c, e),
                     })
                 };
                 let at = opts

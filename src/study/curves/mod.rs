@@ -48,6 +48,10 @@ pub struct EndSummary {
     pub codim2: Option<usize>,
     /// For `newton_failure`: why.
     pub detail: Option<String>,
+    /// For `codim2`: how well the second condition holds there, relative
+    /// to its scale ([`crate::bifurcation::curve::codim2_residual`]):
+    /// rounding where the point was solved with both conditions.
+    pub residual: Option<f64>,
 }
 
 /// One traced curve, as reported.
