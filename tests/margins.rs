@@ -338,6 +338,22 @@ fn sampled_conditions<M: Model>(
                             ),
                             depth,
                         );
+                        // Each other boundary's margin too, as on arrival
+                        // (since stop 31).
+                        for (margin, kb) in interior().into_iter().flatten() {
+                            if kb != e.boundary {
+                                add(
+                                    ViolationKind::Interior,
+                                    Some(kb),
+                                    format!(
+                                        "the flow of {} must stay off {} before its arrival",
+                                        mi.name,
+                                        label(kb)
+                                    ),
+                                    margin,
+                                );
+                            }
+                        }
                     }
                     Ok(Some(_)) => {
                         for (margin, kb) in interior().into_iter().flatten() {

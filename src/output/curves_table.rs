@@ -236,4 +236,23 @@ mod tests {
         assert!(t.contains("curve 0: grazing on Sigma1 of P_{4_33}"), "{t}");
         assert!(t.contains("grazing + stick_onset; 0"), "{t}");
     }
+
+    #[test]
+    fn an_end_located_only_approximately_says_so() {
+        let mut s = set();
+        let at = |s: &CurveSet| {
+            let v: Value = serde_json::from_str(&json(s).unwrap()).unwrap();
+            v["curves"][0]["to"]["residual"].clone()
+        };
+        assert!(at(&s).is_null());
+        s.curves[0].to.as_mut().unwrap().residual = Some(3e-14);
+        assert_eq!(at(&s), 3e-14);
+        assert!(!text(&s, "").contains("approximately"));
+        s.curves[0].to.as_mut().unwrap().residual = Some(1.4e-6);
+        let t = text(&s, "");
+        assert!(
+            t.contains("located only approximately: the second condition holds there to 1.4e-6"),
+            "{t}"
+        );
+    }
 }

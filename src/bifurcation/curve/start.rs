@@ -383,7 +383,9 @@ pub fn condition_value<M: Model>(
 /// `|margin| / scale` ([`condition_scale`](super::condition_scale)); for a
 /// fold, period doubling or Neimark–Sacker end, the test function's over
 /// its scale. `None` for another end, for the no-motion regime's curves,
-/// or if no such condition is evaluable there. Near 0 (rounding): both
+/// for an end where an excursion shrank to nothing (two equal switching
+/// points: solved on the reduced motion, `super::excursion`), or if no
+/// such condition is evaluable there. Near 0 (rounding): both
 /// conditions vanish at the reported point; larger: the end was located
 /// only to where the curve could be followed (a cascade's accumulation,
 /// where the curve's system turns singular), and this says how far.
@@ -397,7 +399,17 @@ pub fn codim2_residual<M: Model>(
         return None;
     };
     let structure = curve.structure.as_ref()?;
-    let mut p = base.clone();
+    // An excursion's end: solved on the reduced motion (`super::excursion`)
+    // and reported with the excursion's two switching points equal; the
+    // full motion's conditions say nothing there.
+    let pts = &end.at.points;
+    if pts.windows(2).any(|w| {
+        (w[1].phase - w[0].phase).abs() <= 1e-12 * w[0].phase.abs().max(1.0)
+            && (w[1].x - w[0].x).abs() <= 1e-12 * w[0].x.abs().max(1.0)
+    }) {
+        return None;
+    }
+    let mut p = *base;
     p.set(plane.x, end.at.x);
     p.set(plane.y, end.at.y);
     let scaled = |c: Condition, v: f64| {
@@ -417,18 +429,34 @@ pub fn codim2_residual<M: Model>(
     // Which conditions the motion has, from the admissibility walk; each
     // measured as a curve measures it (a stick's end by its smooth margin,
     // not the event search's phase difference).
-    let sim = Simulator::<M>::new(p.clone(), SimOptions::default()).ok()?;
-    admissible::conditions(&sim, structure, &end.at.points)
+    let sim = Simulator::<M>::new(p, SimOptions::default()).ok()?;
+    // An interior margin to each boundary too: where the event search
+    // finds an early contact the walk lists one interior entry per segment
+    // (the contact's), while each boundary's has a smooth margin.
+    let mut candidates: Vec<Condition> = Vec::new();
+    for c in admissible::conditions(&sim, structure, &end.at.points) {
+        let boundaries: Vec<Option<usize>> = if c.kind == ViolationKind::Interior {
+            (0..M::INFO.boundaries.len()).map(Some).collect()
+        } else {
+            vec![c.boundary]
+        };
+        for b in boundaries {
+            let cond = Condition::Margin {
+                kind: c.kind,
+                segment: c.segment,
+                boundary: b,
+            };
+            if transition_kind(c.kind) == kind
+                && (boundary.is_none() || b == boundary)
+                && cond != curve.condition
+                && !candidates.contains(&cond)
+            {
+                candidates.push(cond);
+            }
+        }
+    }
+    candidates
         .into_iter()
-        .filter(|c| {
-            transition_kind(c.kind) == kind && (boundary.is_none() || c.boundary == boundary)
-        })
-        .map(|c| Condition::Margin {
-            kind: c.kind,
-            segment: c.segment,
-            boundary: c.boundary,
-        })
-        .filter(|&cond| cond != curve.condition)
         .filter_map(|cond| {
             let v = condition_value::<M>(base, plane, Some(structure), &end.at, cond).ok()?;
             Some(scaled(cond, v))

@@ -556,6 +556,23 @@ fn walk<M: Model>(
                                 label(mi.to)
                             )
                         });
+                        // Each other boundary's margin as on arrival: the
+                        // early contact (often the curve's own grazing, a
+                        // few ulps inside) must not hide it. On `stribeck8`
+                        // (W=2.3:2.6 × Q0=1:3) a grazing curve of `Σ2` ran on
+                        // past where its flow's margin to `Σ1` vanished, to
+                        // -0.072 (`codim2_residual` 1.8e-2 at its end).
+                        for (margin, kb) in per_boundary().into_iter().flatten() {
+                            if kb != e.boundary {
+                                add(ViolationKind::Interior, Some(kb), margin, &|| {
+                                    format!(
+                                        "the flow of {} must stay off {} before its arrival",
+                                        mi.name,
+                                        label(kb)
+                                    )
+                                });
+                            }
+                        }
                     }
                     Outcome::Missing => {
                         let (_, v) = sim.state_at(&seg, b.phase);
