@@ -814,12 +814,12 @@ fn shaw_codim2_ends_hold_both_conditions() {
 /// Every codimension-two end of a grazing or stick curve of `stribeck8`
 /// W = 2.3…2.6 × Q0 = 1…3 holds its second condition to 1e-8 of its scale
 /// (`codim2_residual`, from the motion's conditions; measured 1.9e-9 at
-/// worst, where four curves meet at W = 2.37653). Until stop 31 the
-/// grazing curve of `Sigma6` of the period-3 motion ran on past where its
-/// flow's margin to `Sigma5` vanished, to −0.072, and ended at W = 2.40794
-/// holding no grazing of `Sigma5` (1.8e-2): the event search read an early
-/// contact on the curve's own boundary, and the walk listed no margin to
-/// the domain's other boundary then. It now ends at W = 2.37653, where
+/// worst, where four curves meet at W = 2.37653). Until stop 31 a grazing
+/// curve of the period-3 motion ran on past where its flow's margin to
+/// the domain's other boundary vanished, to −0.072, and ended at
+/// W = 2.40794 holding no grazing of that boundary (1.8e-2): the event
+/// search read an early contact on the curve's own boundary, and the walk
+/// listed no margin to the domain's other boundary then. It now ends at W = 2.37653, where
 /// three other curves end. (Fold ends are left out: the end of the fold
 /// curve whose excursion shrinks to nothing is checked on the reduced
 /// motion, above; on the full motion, with the excursion of zero length,

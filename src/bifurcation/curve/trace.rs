@@ -341,8 +341,7 @@ impl<M: Model> Tracer<'_, M> {
             // turning singular there, as where an arrival before a stick
             // turns tangential) the bracket closes on failed trials, or on
             // a candidate on the far root of that arrival's equation: solve
-            // the point directly. Where the last good trial is that point
-            // already, to the location tolerance, it stays the end.
+            // the point directly.
             // Within a few of the step's lengths in the plane (no bracket:
             // the candidate may lie on another root).
             let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);

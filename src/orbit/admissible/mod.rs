@@ -559,9 +559,10 @@ fn walk<M: Model>(
                         // Each other boundary's margin as on arrival: the
                         // early contact (often the curve's own grazing, a
                         // few ulps inside) must not hide it. On `stribeck8`
-                        // (W=2.3:2.6 × Q0=1:3) a grazing curve of `Σ2` ran on
-                        // past where its flow's margin to `Σ1` vanished, to
-                        // -0.072 (`codim2_residual` 1.8e-2 at its end).
+                        // (W=2.3:2.6 × Q0=1:3) a grazing curve ran on past
+                        // where its flow's margin to the domain's other
+                        // boundary vanished, to -0.072 (`codim2_residual`
+                        // 1.8e-2 at its end).
                         for (margin, kb) in per_boundary().into_iter().flatten() {
                             if kb != e.boundary {
                                 add(ViolationKind::Interior, Some(kb), margin, &|| {
