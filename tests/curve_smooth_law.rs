@@ -767,7 +767,8 @@ fn a_fold_curve_whose_excursion_shrinks_to_nothing_ends_where_the_reduced_motion
 }
 
 /// Every codimension-two end of the Shaw case holds its second condition
-/// (from the motion's conditions, `codim2_residual`) to 1e-7 of its scale,
+/// (from the motion's conditions, `codim2_residual`) to 1e-9 of its scale
+/// but one (below),
 /// and the three stick-onset curves of `Sigma1` each end where a grazing
 /// holds to 1e-9. Until stop 31 those three ended where the event search
 /// read the flow's slow departure from the stick boundary as a graze 1e-6
@@ -776,12 +777,12 @@ fn a_fold_curve_whose_excursion_shrinks_to_nothing_ends_where_the_reduced_motion
 /// reported as codimension-two points, held no second condition (2.5e-3,
 /// 2.3e-3 and 7.1e-4 of its scale). The grazing end of the period-7
 /// motion holds it to 1.7e-8 (located where the bracket closed, the solve
-/// on both conditions failing there).
+/// on both conditions failing there), allowed 5e-8.
 #[test]
 fn shaw_codim2_ends_hold_both_conditions() {
     let (set, curves, base) = shaw();
     let plane = shaw_box().plane::<Coulomb>(base).expect("box");
-    let mut onsets = 0;
+    let (mut onsets, mut approximate) = (0, 0);
     for (i, c) in curves.iter().enumerate() {
         for e in &c.ends {
             if !matches!(e.reason, CurveEndReason::Codim2 { .. }) {
@@ -790,13 +791,14 @@ fn shaw_codim2_ends_hold_both_conditions() {
             let Some(v) = codim2_residual::<Coulomb>(base, &plane, c, e) else {
                 // Only an excursion's end (solved on the reduced motion) has none.
                 assert!(
-                    e.at.points.windows(2).any(|w| w[0] == w[1]),
+                    c.shrunk_excursion(&e.at),
                     "curve {i}: no second condition at {e:?}"
                 );
                 continue;
             };
             let onset = c.kind == TransitionKind::StickOnset;
-            let bound = if onset { 1e-9 } else { 1e-7 };
+            let bound = if onset { 1e-9 } else { 5e-8 };
+            approximate += usize::from(v > 1e-9);
             assert!(
                 v <= bound,
                 "curve {i} ({:?} of {}) end at W = {}, Q0 = {}: second condition to {v:e}",
@@ -809,6 +811,11 @@ fn shaw_codim2_ends_hold_both_conditions() {
         }
     }
     assert!(onsets >= 3, "{onsets} stick-onset codim-2 ends");
+    // Only the period-7 grazing end is located by the bracket alone: where
+    // the solve on both conditions succeeds its point is the end, even
+    // within the location tolerance of the bracket's last trial (until
+    // stop 31 two grazing ends kept that trial, 6e-8 and 2e-8).
+    assert!(approximate <= 1, "{approximate} ends above 1e-9");
 }
 
 /// Every codimension-two end of a grazing or stick curve of `stribeck8`
@@ -845,7 +852,7 @@ fn s8box_codim2_ends_of_margin_curves_hold_both_conditions() {
             let Some(v) = codim2_residual::<Stribeck8>(&base, &plane, c, e) else {
                 // Only an excursion's end (solved on the reduced motion) has none.
                 assert!(
-                    e.at.points.windows(2).any(|w| w[0] == w[1]),
+                    c.shrunk_excursion(&e.at),
                     "curve {i}: no second condition at {e:?}"
                 );
                 continue;

@@ -311,7 +311,9 @@ fn sampled_conditions<M: Model>(
                 let interior = || {
                     sampled_interior_margin(sim, &seg, b.phase, [mi.from, mi.to], j, n, ends, flat)
                 };
-                match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
+                // The margin to each boundary where the flow arrives or
+                // contacts one early (but the early contact's own).
+                let sides = match sim.next_event(&seg, b.phase + phase_tol(b.phase)) {
                     Ok(Some((e, _)))
                         if e.phase < b.phase - phase_tol(b.phase) || e.boundary != mi.to =>
                     {
@@ -340,35 +342,9 @@ fn sampled_conditions<M: Model>(
                         );
                         // Each other boundary's margin too, as on arrival
                         // (since stop 31).
-                        for (margin, kb) in interior().into_iter().flatten() {
-                            if kb != e.boundary {
-                                add(
-                                    ViolationKind::Interior,
-                                    Some(kb),
-                                    format!(
-                                        "the flow of {} must stay off {} before its arrival",
-                                        mi.name,
-                                        label(kb)
-                                    ),
-                                    margin,
-                                );
-                            }
-                        }
+                        Some(Some(e.boundary))
                     }
-                    Ok(Some(_)) => {
-                        for (margin, kb) in interior().into_iter().flatten() {
-                            add(
-                                ViolationKind::Interior,
-                                Some(kb),
-                                format!(
-                                    "the flow of {} must stay off {} before its arrival",
-                                    mi.name,
-                                    label(kb)
-                                ),
-                                margin,
-                            );
-                        }
-                    }
+                    Ok(Some(_)) => Some(None),
                     Ok(None) => {
                         let (_, v) = sim.state_at(&seg, b.phase);
                         add(
@@ -382,13 +358,33 @@ fn sampled_conditions<M: Model>(
                             ),
                             -(v - vb).abs(),
                         );
+                        None
                     }
-                    Err(e) => add(
-                        ViolationKind::Other,
-                        None,
-                        format!("simulation failed: {e}"),
-                        f64::NAN,
-                    ),
+                    Err(e) => {
+                        add(
+                            ViolationKind::Other,
+                            None,
+                            format!("simulation failed: {e}"),
+                            f64::NAN,
+                        );
+                        None
+                    }
+                };
+                if let Some(skip) = sides {
+                    for (margin, kb) in interior().into_iter().flatten() {
+                        if Some(kb) != skip {
+                            add(
+                                ViolationKind::Interior,
+                                Some(kb),
+                                format!(
+                                    "the flow of {} must stay off {} before its arrival",
+                                    mi.name,
+                                    label(kb)
+                                ),
+                                margin,
+                            );
+                        }
+                    }
                 }
                 let acc1 = M::normal_field(p, j, b.x, vb, b.phase)[0];
                 let out_sign = if dom.upper == Some(mi.to) { 1.0 } else { -1.0 };

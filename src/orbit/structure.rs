@@ -121,6 +121,21 @@ impl Structure {
         }
     }
 
+    /// `T` where this structure is `T T`: two equal halves, each over half
+    /// the forcing periods (a motion of `T` is also one of `T T`, see
+    /// [`Self::repeated`]). `None` for any other structure.
+    pub fn half(&self) -> Option<Self> {
+        let h = self.steps.len() / 2;
+        let halves = h > 0
+            && self.steps.len() % 2 == 0
+            && self.periods % 2 == 0
+            && self.steps[..h] == self.steps[h..];
+        halves.then(|| Self {
+            steps: self.steps[..h].to_vec(),
+            periods: self.periods / 2,
+        })
+    }
+
     /// Whether any mapping is the stick mapping.
     pub fn has_stick(&self, info: &ModelInfo) -> bool {
         self.steps
@@ -204,6 +219,25 @@ mod tests {
             Structure::parse(info, "3_33 4_33", 0).unwrap_err(),
             StructureError::ZeroPeriod
         );
+    }
+
+    #[test]
+    fn a_structure_of_two_equal_halves_has_a_half() {
+        let info = Paper::INFO;
+        let t = Structure::parse(info, "P_{3_31 0_11 3_13 4_33}", 1).unwrap();
+        assert_eq!(t.repeated(2).half(), Some(t.clone()));
+        // Not two halves: an odd count, one period, unequal halves.
+        assert_eq!(t.half(), None);
+        let s = Structure::parse(info, "P_{3_33 4_33 3_33 4_33}", 2).unwrap();
+        assert_eq!(s.half().map(|h| (h.len(), h.periods())), Some((2, 1)));
+        assert_eq!(
+            Structure::parse(info, "P_{3_33 4_33 3_33 4_33}", 1)
+                .unwrap()
+                .half(),
+            None
+        );
+        let u = "P_{3_31 0_11 3_13 4_33 3_31 1_11 3_13 4_33}";
+        assert_eq!(Structure::parse(info, u, 2).unwrap().half(), None);
     }
 
     #[test]

@@ -24,7 +24,6 @@
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::TransitionKind;
 use crate::model::Model;
-use crate::orbit::structure::Structure;
 
 use super::start::{system, to_point};
 use super::stop::PAIR_ITERATIONS;
@@ -78,13 +77,8 @@ impl<M: Model> Tracer<'_, M> {
         if self.sys.eval.condition != Condition::Eigen(TransitionKind::Fold) {
             return None;
         }
-        let structure = self.sys.eval.structure.clone()?;
-        let steps = self.sys.eval.steps.clone();
-        let (m, periods, shift) = (steps.len(), structure.periods(), self.sys.eval.shift);
-        let h = m / 2;
-        if m == 0 || m % 2 != 0 || periods % 2 != 0 || steps[..h] != steps[h..] {
-            return None;
-        }
+        let t = self.sys.eval.structure.as_ref()?.half()?;
+        let (h, shift) = (t.len(), self.sys.eval.shift);
         let n = prev.x.len();
         // Three points with distinct `s`: `prev` and the last two before it
         // with at least twice and four times its `s`.
@@ -117,7 +111,6 @@ impl<M: Model> Tracer<'_, M> {
         }
         // `T` from the first half of `prev`, on the hyperplane through the
         // estimate across the curve's last tangent.
-        let t = Structure::from_indices(M::INFO, &steps[..h], periods / 2).ok()?;
         let mut z: Vec<f64> = prev.x[..2 * h].to_vec();
         z.extend_from_slice(&estimate);
         let pd = Condition::Eigen(TransitionKind::PeriodDoubling);

@@ -189,6 +189,32 @@ pub struct Curve {
     pub special: Vec<Special>,
 }
 
+impl Curve {
+    /// Whether `at` (one of this curve's points) is where an excursion of
+    /// its motion shrank to nothing: two consecutive switching points equal
+    /// (the last and the first one cycle on), as the `excursion` pass reports
+    /// an end it solved on the reduced motion.
+    pub fn shrunk_excursion(&self, at: &CurvePoint) -> bool {
+        let shift =
+            std::f64::consts::TAU * self.structure.as_ref().map_or(1, |s| s.periods()) as f64;
+        let p = &at.points;
+        let n = p.len();
+        n >= 2
+            && (0..n).any(|i| {
+                let (a, b, wrap) = if i + 1 < n {
+                    (&p[i], &p[i + 1], 0.0)
+                } else {
+                    (&p[0], &p[n - 1], shift)
+                };
+                // Across the cycle's wrap the phase is `φ - shift`: equal to
+                // a few ulps of `φ`.
+                a.x == b.x
+                    && (a.phase + wrap - b.phase).abs()
+                        <= 4.0 * f64::EPSILON * b.phase.abs().max(1.0)
+            })
+    }
+}
+
 /// Settings of a curve's continuation. Steps are arclengths in the scaled
 /// metric of [`crate::bifurcation::ContinuationOptions`], each parameter
 /// over its range's span.
@@ -242,4 +268,61 @@ pub enum CurveError {
     /// The condition cannot be evaluated there.
     #[error("the condition cannot be evaluated: {0}")]
     Condition(String),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::paper::Paper;
+    use crate::Model;
+
+    fn at(points: &[(f64, f64)]) -> CurvePoint {
+        CurvePoint {
+            x: 1.0,
+            y: 1.0,
+            points: points
+                .iter()
+                .map(|&(x, phase)| SwitchingPoint { x, phase })
+                .collect(),
+        }
+    }
+
+    /// Two equal consecutive switching points, or the last equal to the
+    /// first one cycle on (two forcing periods: `4π`), mark a shrunk
+    /// excursion; distinct points, however near, do not.
+    #[test]
+    fn a_shrunk_excursion_is_two_equal_switching_points_even_across_the_wrap() {
+        let s = Structure::parse(Paper::INFO, "P_{3_33 4_33 3_33 4_33}", 2).unwrap();
+        let curve = Curve {
+            kind: TransitionKind::Grazing,
+            condition: Condition::Eigen(TransitionKind::Fold),
+            boundary: None,
+            structure: Some(s),
+            points: Vec::new(),
+            ends: Vec::new(),
+            special: Vec::new(),
+        };
+        let tau2 = 2.0 * std::f64::consts::TAU;
+        let phi = 0.3 + tau2 - 1e-3;
+        assert!(curve.shrunk_excursion(&at(&[(0.1, 0.3), (0.2, 1.0), (0.2, 1.0), (0.4, 5.0)])));
+        assert!(curve.shrunk_excursion(&at(&[
+            (0.5, phi - tau2),
+            (0.2, 1.0),
+            (0.3, 5.0),
+            (0.5, phi)
+        ])));
+        assert!(!curve.shrunk_excursion(&at(&[
+            (0.1, 0.3),
+            (0.2, 1.0),
+            (0.2, 1.0 + 1e-12),
+            (0.4, 5.0)
+        ])));
+        assert!(!curve.shrunk_excursion(&at(&[
+            (0.5, 0.3),
+            (0.2, 1.0),
+            (0.3, 5.0),
+            (0.5, 0.3 + tau2 - 1e-9)
+        ])));
+        assert!(!curve.shrunk_excursion(&at(&[(0.1, 0.3)])));
+    }
 }

@@ -399,14 +399,9 @@ pub fn codim2_residual<M: Model>(
         return None;
     };
     let structure = curve.structure.as_ref()?;
-    // An excursion's end: solved on the reduced motion (`super::excursion`)
-    // and reported with the excursion's two switching points equal; the
-    // full motion's conditions say nothing there.
-    let pts = &end.at.points;
-    if pts.windows(2).any(|w| {
-        (w[1].phase - w[0].phase).abs() <= 1e-12 * w[0].phase.abs().max(1.0)
-            && (w[1].x - w[0].x).abs() <= 1e-12 * w[0].x.abs().max(1.0)
-    }) {
+    // An excursion's end: solved on the reduced motion (`super::excursion`);
+    // the full motion's conditions say nothing there.
+    if curve.shrunk_excursion(&end.at) {
         return None;
     }
     let mut p = *base;
@@ -476,23 +471,14 @@ fn halves_residual<M: Model>(
 ) -> f64 {
     let pd = Condition::Eigen(TransitionKind::PeriodDoubling);
     let half = || {
-        let structure = curve.structure.as_ref()?;
-        let steps = structure.steps();
-        let h = steps.len() / 2;
-        let halves = curve.condition == Condition::Eigen(TransitionKind::Fold)
+        let merging = curve.condition == Condition::Eigen(TransitionKind::Fold)
             && end.reason
                 == (super::CurveEndReason::Codim2 {
                     kind: TransitionKind::PeriodDoubling,
                     boundary: None,
-                })
-            && h > 0
-            && steps.len() % 2 == 0
-            && structure.periods() % 2 == 0
-            && steps[..h] == steps[h..];
-        if !halves {
-            return None;
-        }
-        let t = Structure::from_indices(M::INFO, &steps[..h], structure.periods() / 2).ok()?;
+                });
+        let t = curve.structure.as_ref()?.half().filter(|_| merging)?;
+        let h = t.len();
         let at = CurvePoint {
             points: end.at.points[..h].to_vec(),
             ..end.at.clone()

@@ -528,18 +528,10 @@ fn walk<M: Model>(
                     Some(Ok(None)) => Outcome::Missing,
                     Some(Err(e)) => Outcome::Failed(e),
                 };
-                match outcome {
-                    Outcome::Arrives => {
-                        for (margin, kb) in per_boundary().into_iter().flatten() {
-                            add(ViolationKind::Interior, Some(kb), margin, &|| {
-                                format!(
-                                    "the flow of {} must stay off {} before its arrival",
-                                    mi.name,
-                                    label(kb)
-                                )
-                            });
-                        }
-                    }
+                // Where the flow arrives, or contacts a boundary early: its
+                // margin to each boundary (but the early contact's own).
+                let sides = match outcome {
+                    Outcome::Arrives => Some(None),
                     Outcome::Early(e) => {
                         let what = if e.kind == EventKind::Graze {
                             "grazes"
@@ -563,17 +555,7 @@ fn walk<M: Model>(
                         // where its flow's margin to the domain's other
                         // boundary vanished, to -0.072 (`codim2_residual`
                         // 1.8e-2 at its end).
-                        for (margin, kb) in per_boundary().into_iter().flatten() {
-                            if kb != e.boundary {
-                                add(ViolationKind::Interior, Some(kb), margin, &|| {
-                                    format!(
-                                        "the flow of {} must stay off {} before its arrival",
-                                        mi.name,
-                                        label(kb)
-                                    )
-                                });
-                            }
-                        }
+                        Some(Some(e.boundary))
                     }
                     Outcome::Missing => {
                         let (_, v) = sim.state_at(&seg, b.phase);
@@ -590,10 +572,27 @@ fn walk<M: Model>(
                                 )
                             },
                         );
+                        None
                     }
-                    Outcome::Failed(e) => add(ViolationKind::Other, None, f64::NAN, &|| {
-                        format!("simulation failed: {e}")
-                    }),
+                    Outcome::Failed(e) => {
+                        add(ViolationKind::Other, None, f64::NAN, &|| {
+                            format!("simulation failed: {e}")
+                        });
+                        None
+                    }
+                };
+                if let Some(skip) = sides {
+                    for (margin, kb) in per_boundary().into_iter().flatten() {
+                        if Some(kb) != skip {
+                            add(ViolationKind::Interior, Some(kb), margin, &|| {
+                                format!(
+                                    "the flow of {} must stay off {} before its arrival",
+                                    mi.name,
+                                    label(kb)
+                                )
+                            });
+                        }
+                    }
                 }
                 // Transversal arrival.
                 let acc1 = M::normal_field(p, j, b.x, vb, b.phase)[0];
