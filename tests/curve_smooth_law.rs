@@ -43,7 +43,7 @@ use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::curves::{curves_with, traced, CurveSet, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::{FrictionOscillator, Model, ParamSet};
+use stickslip::{FrictionOscillator, MappingKind, Model, ParamSet};
 
 /// The line through the split: the sweep along W at this Q0 locates it at
 /// W = 2.525.
@@ -868,4 +868,99 @@ fn s8box_codim2_ends_of_margin_curves_hold_both_conditions() {
         }
     }
     assert!(checked >= 5, "{checked} ends checked");
+}
+
+/// On `stribeck8` (W = 2.4…3 × Q0 = 2.05…2.65, seed Q0 = 2.6) the
+/// passable-onset curve of the period-2 motion
+/// `P_{7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77}^2` holds `Fnf = as` at the
+/// start of its stick on `Sigma1` (the stick onset's limit). It ends at
+/// W = 2.44708, Q0 = 2.11038, where `dFnf/dφ` at that start vanishes too:
+/// beyond, an extremum of `Fnf` at `as` has entered the stick and the
+/// stick ends at once. Checked independently of the tracer: `Fnf` from
+/// the model's stick forces along the stick (`x = x_a + v_s (φ − φ_a)/W`),
+/// its rate by central differences; at the end both vanish to 1e-8 of the
+/// force scale, and at the curve's next point the rate turns `Fnf` back
+/// inside `|Fnf| < as`. `codim2_residual` reports it to 1e-8: until stop
+/// 32 it measured only the stick's interior extrema, 4.6e-2 of the scale
+/// off, and said the end was no codimension-two point.
+#[test]
+fn a_passable_onset_curve_ends_where_the_force_extremum_reaches_the_stick_start() {
+    let base = stribeck8::Params::default();
+    let opts = CurvesOptions {
+        x: ("W".into(), [2.4, 3.0]),
+        y: ("Q0".into(), [2.05, 2.65]),
+        seeds: vec![Line::Y(2.6)],
+        at: Vec::new(),
+    };
+    let plane = opts.plane::<Stribeck8>(&base).expect("box");
+    let (_, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).expect("run");
+    let wanted = Structure::parse(
+        Stribeck8::INFO,
+        "P_{7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77}",
+        2,
+    )
+    .expect("structure");
+    let (curve, end, next) = curves
+        .iter()
+        .filter(|c| {
+            c.kind == TransitionKind::PassableOnset && c.structure.as_ref() == Some(&wanted)
+        })
+        .find_map(|c| {
+            let first = &c.ends[0];
+            let vanishing = CurveEndReason::Codim2 {
+                kind: TransitionKind::StickVanishing,
+                boundary: Some(3),
+            };
+            (first.reason == vanishing).then(|| (c, first, &c.points[1]))
+        })
+        .expect("the passable-onset curve ending at a stick's vanishing");
+    assert!(
+        (end.at.x - 2.44708).abs() < 1e-4 && (end.at.y - 2.11038).abs() < 1e-4,
+        "{:?}",
+        (end.at.x, end.at.y)
+    );
+    // Fnf and its rate at the start of the stick on Sigma1, over the scale.
+    let at_start = |at: &CurvePoint| {
+        let mut p = base;
+        p.set(plane.x, at.x);
+        p.set(plane.y, at.y);
+        let k = wanted
+            .steps()
+            .iter()
+            .position(|&s| {
+                let mi = Stribeck8::INFO.mappings[s];
+                mi.kind == MappingKind::Stick && mi.from == 3
+            })
+            .expect("a stick on Sigma1");
+        let a = at.points[k];
+        let vs = Stribeck8::boundary_velocity(&p, 3);
+        let fnf = |phi: f64| {
+            let x = a.x + vs * (phi - a.phase) / at.x;
+            Stribeck8::stick_forces(&p, x, phi)
+                .expect("forces")
+                .non_friction
+        };
+        let h = 1e-5;
+        let rate = (fnf(a.phase + h) - fnf(a.phase - h)) / (2.0 * h);
+        let bound = Stribeck8::static_bound(&p).expect("as");
+        let cond = Condition::Margin {
+            kind: ViolationKind::StickEnd,
+            segment: k,
+            boundary: Some(3),
+        };
+        let scale = condition_scale::<Stribeck8>(&p, cond, Some(&wanted), &at.points);
+        ((fnf(a.phase) - bound) / scale, rate / scale)
+    };
+    let (excess, rate) = at_start(&end.at);
+    assert!(
+        excess.abs() <= 1e-8 && rate.abs() <= 1e-8,
+        "Fnf − as {excess:e}, rate {rate:e}"
+    );
+    let (excess, rate) = at_start(next);
+    assert!(
+        excess.abs() <= 1e-8 && rate < -1e-6,
+        "next point: Fnf − as {excess:e}, rate {rate:e}"
+    );
+    let r = codim2_residual::<Stribeck8>(&base, &plane, curve, end).expect("a residual");
+    assert!(r <= 1e-8, "residual {r:e}");
 }

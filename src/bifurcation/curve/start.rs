@@ -428,8 +428,9 @@ pub fn codim2_residual<M: Model>(
     // An interior margin to each boundary too: where the event search
     // finds an early contact the walk lists one interior entry per segment
     // (the contact's), while each boundary's has a smooth margin.
+    let walked = admissible::conditions(&sim, structure, &end.at.points);
     let mut candidates: Vec<Condition> = Vec::new();
-    for c in admissible::conditions(&sim, structure, &end.at.points) {
+    for c in &walked {
         let boundaries: Vec<Option<usize>> = if c.kind == ViolationKind::Interior {
             (0..M::INFO.boundaries.len()).map(Some).collect()
         } else {
@@ -450,12 +451,35 @@ pub fn codim2_residual<M: Model>(
             }
         }
     }
+    // A stick's vanishing where an extremum of `Fnf` at `±as` sits at an
+    // end of the stick (on a passable-onset curve, which holds `|Fnf| = as`
+    // at the stick's start: the interior extrema hold no such margin yet).
+    // On `stribeck8` a passable-onset curve of a period-2 motion ends so
+    // at W = 2.44708, Q0 = 2.11038, its interior extrema 4.6e-2 of the
+    // scale off.
+    let touches = walked
+        .iter()
+        .filter(|c| {
+            c.kind == ViolationKind::StickEnd
+                && kind == TransitionKind::StickVanishing
+                && (boundary.is_none() || c.boundary == boundary)
+        })
+        .filter_map(|c| {
+            let touch = admissible::end_touch(&sim, structure, &end.at.points, c.segment)?;
+            let cond = Condition::Margin {
+                kind: c.kind,
+                segment: c.segment,
+                boundary: c.boundary,
+            };
+            Some(scaled(cond, touch))
+        });
     candidates
         .into_iter()
         .filter_map(|cond| {
             let v = condition_value::<M>(base, plane, Some(structure), &end.at, cond).ok()?;
             Some(scaled(cond, v))
         })
+        .chain(touches)
         .min_by(f64::total_cmp)
 }
 

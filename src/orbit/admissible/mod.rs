@@ -33,7 +33,7 @@ mod sink;
 mod stick;
 
 use contact::first_contact;
-pub(crate) use stick::{early_end, early_end_extremum};
+pub(crate) use stick::{early_end, early_end_extremum, end_touch};
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
 use sink::{Except, Only, Sink, Violated, Worst};

@@ -62,6 +62,45 @@ pub(crate) fn early_end_extremum<M: Model>(
     early_end(sim, mi.from, a.x, a.phase, b.phase).map(|(m, gap, _)| (m, gap))
 }
 
+/// How nearly `Fnf` touches `±as` tangentially at an end of the stick
+/// `segment` of `structure` at `points` (its start or its exit): at each
+/// end the larger of `||Fnf| − as|` and `|dFnf/dφ|` (a force per unit mass,
+/// and its rate per radian), the smaller over the two ends. Zero where an
+/// extremum of `Fnf` at the static bound sits at an end of the stick: the
+/// stick's vanishing met on a curve that holds `|Fnf| = as` at the stick's
+/// start (a passable onset: on one side the extremum enters the stick at
+/// `±as` and the stick ends at once, a margin born at zero that the interior
+/// extrema of [`early_end`] do not yet hold), or a stick's exit turning
+/// tangential. `None` if `segment` is no stick or the model has no static
+/// bound there.
+pub(crate) fn end_touch<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    segment: usize,
+) -> Option<f64> {
+    let step = *structure.steps().get(segment)?;
+    let mi = M::INFO.mappings[step];
+    if mi.kind != MappingKind::Stick || points.len() != structure.len() {
+        return None;
+    }
+    let (stick, bound) = sim.stick()?;
+    if stick != mi.from {
+        return None;
+    }
+    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let (a, b) = (points[segment], arrival(points, segment, shift));
+    let osc = sim.oscillator();
+    let (a0, c, w) = (osc.amplitude, osc.stiffness, osc.frequency);
+    let vs = sim.velocity(mi.from);
+    let touch = |phi: f64| {
+        let f = force_along(sim, mi.from, a.x, a.phase, phi)?;
+        let rate = -a0 * phi.sin() - c * vs / w;
+        Some((f.abs() - bound).abs().max(rate.abs()))
+    };
+    Some(touch(a.phase)?.min(touch(b.phase)?))
+}
+
 /// The smallest margin over the interior extrema ([`early_end_margin`]),
 /// that extremum's distance (in phase) to the nearer end of the stick, and
 /// its phase (where the stick touches `±as` when the margin is zero).
