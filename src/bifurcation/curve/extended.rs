@@ -46,6 +46,22 @@ const PAIR_MERIT: f64 = 1e-11;
 /// converging slowly on Fig. 11's curves `6e-12` (median) up to `4e-10`.
 const HOLDS: f64 = 1e-13;
 
+/// A Newton step that has stopped contracting, from a point whose equations
+/// hold to rounding ([`HOLDS`]), is rounding stirred up by the conditioning
+/// if it is below this times the corrector's tolerance
+/// ([`Extended::correct`]); the point is then as exact as the equations
+/// allow. The sweep's corrector accepts such a point with no bound at all
+/// ([`crate::bifurcation::bordered`]). Measured: on the paper model's
+/// grazing curves of 36- to 40-mapping motions (`W=5:8 × Q0=20:60`,
+/// `--max-mappings 40`) the arrival before a stick turns nearly tangential
+/// as the curve nears a passable onset; the stick's start phase
+/// then moves by 1e-10…3e-9 from one iteration to the next while every
+/// residual stays below 1.2e-14 of its row's gradient. With the bound at
+/// `1e3` those four curves crawled at steps of 1e-9 and ended as corrector
+/// failures 5e-4…2.1e-2 in `W` short of their codimension-two points
+/// (grazing meeting passable onset).
+const ROUNDING_STEP: f64 = 1e5;
+
 /// How far above its estimated rounding floor an eigenvalue test function
 /// may lie and still hold ([`Extended::at_rounding_floor`]): the estimate
 /// leaves out the rounding of `DP`'s product itself. Measured on
@@ -738,14 +754,14 @@ impl<M: Model> Extended<M> {
                 return Correction::Converged { iterations: it + 1 };
             }
             // Rounding-limited: the step has stopped contracting at a size
-            // within the accepted `1e3 tol`, and the equations held to
+            // within [`ROUNDING_STEP`] `tol`, and the equations held to
             // rounding where it was computed. Near a point where the system
             // turns singular (an arrival turning tangential before a stick
             // leaves the stick's start free along the stick to first order)
             // rounding in the residuals, amplified by the conditioning,
             // keeps the step above `tol`: further iterations only stir the
             // noise. (A slow convergence has residuals well above rounding.)
-            if it >= 1 && size <= 1e3 * tol && size > 0.5 * last && holds {
+            if it >= 1 && size <= ROUNDING_STEP * tol && size > 0.5 * last && holds {
                 return Correction::Converged { iterations: it + 1 };
             }
             if it >= 3 && size > last && size > 1e3 * tol {

@@ -457,11 +457,12 @@ pub fn codim2_residual<M: Model>(
     // On `stribeck8` a passable-onset curve of a period-2 motion ends so
     // at W = 2.44708, Q0 = 2.11038, its interior extrema 4.6e-2 of the
     // scale off.
+    let vanishing = kind == TransitionKind::StickVanishing;
     let touches = walked
         .iter()
         .filter(|c| {
-            c.kind == ViolationKind::StickEnd
-                && kind == TransitionKind::StickVanishing
+            vanishing
+                && c.kind == ViolationKind::StickEnd
                 && (boundary.is_none() || c.boundary == boundary)
         })
         .filter_map(|c| {

@@ -52,20 +52,33 @@ pub(crate) fn early_end_extremum<M: Model>(
     points: &[SwitchingPoint],
     segment: usize,
 ) -> Option<(f64, f64)> {
+    let (k, a, b) = stick_ends::<M>(structure, points, segment)?;
+    early_end(sim, k, a.x, a.phase, b.phase).map(|(m, gap, _)| (m, gap))
+}
+
+/// The boundary the stick `segment` of `structure` sticks on, its start and
+/// its exit at `points`; `None` if `segment` is no stick (or `points` do not
+/// fit the structure).
+fn stick_ends<M: Model>(
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    segment: usize,
+) -> Option<(usize, SwitchingPoint, SwitchingPoint)> {
     let step = *structure.steps().get(segment)?;
     let mi = M::INFO.mappings[step];
     if mi.kind != MappingKind::Stick || points.len() != structure.len() {
         return None;
     }
     let shift = std::f64::consts::TAU * structure.periods() as f64;
-    let (a, b) = (points[segment], arrival(points, segment, shift));
-    early_end(sim, mi.from, a.x, a.phase, b.phase).map(|(m, gap, _)| (m, gap))
+    Some((mi.from, points[segment], arrival(points, segment, shift)))
 }
 
 /// How nearly `Fnf` touches `±as` tangentially at an end of the stick
 /// `segment` of `structure` at `points` (its start or its exit): at each
 /// end the larger of `||Fnf| − as|` and `|dFnf/dφ|` (a force per unit mass,
-/// and its rate per radian), the smaller over the two ends. Zero where an
+/// and its rate per radian: the force's change over one radian of forcing
+/// phase, so both are read on the force's scale), the smaller over the two
+/// ends. Zero where an
 /// extremum of `Fnf` at the static bound sits at an end of the stick: the
 /// stick's vanishing met on a curve that holds `|Fnf| = as` at the stick's
 /// start (a passable onset: on one side the extremum enters the stick at
@@ -79,24 +92,14 @@ pub(crate) fn end_touch<M: Model>(
     points: &[SwitchingPoint],
     segment: usize,
 ) -> Option<f64> {
-    let step = *structure.steps().get(segment)?;
-    let mi = M::INFO.mappings[step];
-    if mi.kind != MappingKind::Stick || points.len() != structure.len() {
-        return None;
-    }
+    let (k, a, b) = stick_ends::<M>(structure, points, segment)?;
     let (stick, bound) = sim.stick()?;
-    if stick != mi.from {
+    if stick != k {
         return None;
     }
-    let shift = std::f64::consts::TAU * structure.periods() as f64;
-    let (a, b) = (points[segment], arrival(points, segment, shift));
-    let osc = sim.oscillator();
-    let (a0, c, w) = (osc.amplitude, osc.stiffness, osc.frequency);
-    let vs = sim.velocity(mi.from);
     let touch = |phi: f64| {
-        let f = force_along(sim, mi.from, a.x, a.phase, phi)?;
-        let rate = -a0 * phi.sin() - c * vs / w;
-        Some((f.abs() - bound).abs().max(rate.abs()))
+        let f = force_along(sim, k, a.x, a.phase, phi)?;
+        Some((f.abs() - bound).abs().max(force_rate(sim, k, phi).abs()))
     };
     Some(touch(a.phase)?.min(touch(b.phase)?))
 }
@@ -191,10 +194,7 @@ pub(super) fn search_start<M: Model>(
     if stick != k || f0.abs().partial_cmp(&bound) != Some(Ordering::Greater) {
         return phi_a;
     }
-    let osc = sim.oscillator();
-    let (a0, c, w) = (osc.amplitude, osc.stiffness, osc.frequency);
-    let vs = sim.velocity(k);
-    let rate = -a0 * phi_a.sin() - c * vs / w;
+    let rate = force_rate(sim, k, phi_a);
     if (rate * f0.signum()).partial_cmp(&0.0) != Some(Ordering::Less) {
         return phi_a;
     }
@@ -250,4 +250,11 @@ fn force_along<M: Model>(
 ) -> Option<f64> {
     let x = x_a + sim.velocity(k) * (phi - phi_a) / sim.oscillator().frequency;
     M::stick_forces(sim.params(), x, phi).map(|f| f.non_friction)
+}
+
+/// `dFnf/dφ = −A0 sin φ − c v_k / W` at phase `phi` of a stick on boundary
+/// `k` (the rate of [`force_along`]).
+fn force_rate<M: Model>(sim: &Simulator<M>, k: usize, phi: f64) -> f64 {
+    let osc = sim.oscillator();
+    -osc.amplitude * phi.sin() - osc.stiffness * sim.velocity(k) / osc.frequency
 }
