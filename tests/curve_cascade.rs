@@ -296,6 +296,18 @@ fn far_end(c: &Curve) -> &stickslip::bifurcation::curve::CurveEnd {
         .expect("an open curve")
 }
 
+/// A grazing curve's end at a codimension-two point with the passable
+/// onset on Σ1.
+fn meets_passable_onset(reason: &CurveEndReason) -> bool {
+    matches!(
+        reason,
+        CurveEndReason::Codim2 {
+            kind: TransitionKind::PassableOnset,
+            boundary: Some(SIGMA1)
+        }
+    )
+}
+
 #[test]
 fn every_end_is_the_box_edge_or_a_codim2_point() {
     for t in curves() {
@@ -341,13 +353,7 @@ fn every_end_is_the_box_edge_or_a_codim2_point() {
     for t in &curves()[..2] {
         let e = far_end(&t.curve);
         assert!(
-            matches!(
-                e.reason,
-                CurveEndReason::Codim2 {
-                    kind: TransitionKind::PassableOnset,
-                    boundary: Some(SIGMA1)
-                }
-            ),
+            meets_passable_onset(&e.reason),
             "{}: {:?}",
             t.name,
             e.reason
@@ -377,14 +383,7 @@ fn every_end_is_the_box_edge_or_a_codim2_point() {
     // from W = 7.1913 on and it crawled there to a corrector failure.)
     let e = far_end(&curves()[3].curve);
     assert!(
-        matches!(
-            e.reason,
-            CurveEndReason::Codim2 {
-                kind: TransitionKind::PassableOnset,
-                boundary: Some(SIGMA1)
-            }
-        ) && e.at.x > 7.2
-            && e.at.x < onset.at.x,
+        meets_passable_onset(&e.reason) && e.at.x > 7.2 && e.at.x < onset.at.x,
         "^10 grazing: ends with {:?} at W = {}, Q0 = {}",
         e.reason,
         e.at.x,

@@ -78,8 +78,8 @@ fn stick_ends<M: Model>(
 /// end the larger of `||Fnf| − as|` and `|dFnf/dφ|` (a force per unit mass,
 /// and its rate per radian: the force's change over one radian of forcing
 /// phase, so both are read on the force's scale), the smaller over the two
-/// ends. Zero where an
-/// extremum of `Fnf` at the static bound sits at an end of the stick: the
+/// ends. Zero where an extremum of `Fnf` at the static bound sits at an
+/// end of the stick: the
 /// stick's vanishing met on a curve that holds `|Fnf| = as` at the stick's
 /// start (a passable onset: on one side the extremum enters the stick at
 /// `±as` and the stick ends at once, a margin born at zero that the interior
