@@ -73,18 +73,32 @@ pub(super) fn normal_field_at<M: Model>(
     if segment >= m || points.len() != m {
         return f64::NAN;
     }
-    let mi = M::INFO.mappings[steps[segment]];
+    // The phase of the last arrival is shifted by whole forcing periods:
+    // the field does not see it.
+    let at = if arrival {
+        points[(segment + 1) % m]
+    } else {
+        points[segment]
+    };
+    field_at_end::<M>(p, steps[segment], at, arrival, rate)
+}
+
+/// The normal field `F_j` (or its rate `DF_j` with `rate`) of flow mapping
+/// `step` at `at`, its arrival point (else its departure point), signed
+/// as [`normal_field_at`]. NaN for a stick.
+pub(super) fn field_at_end<M: Model>(
+    p: &M::Params,
+    step: usize,
+    at: SwitchingPoint,
+    arrival: bool,
+    rate: bool,
+) -> f64 {
+    let mi = M::INFO.mappings[step];
     let Some(j) = mi.domain else {
         return f64::NAN;
     };
     let dom = M::INFO.domains[j];
-    // The phase of the last arrival is shifted by whole forcing periods:
-    // the field does not see it.
-    let (at, k) = if arrival {
-        (points[(segment + 1) % m], mi.to)
-    } else {
-        (points[segment], mi.from)
-    };
+    let k = if arrival { mi.to } else { mi.from };
     let [f, df] = M::normal_field(p, j, at.x, M::boundary_velocity(p, k), at.phase);
     let above = dom.lower == Some(k);
     let sign = if above != arrival { 1.0 } else { -1.0 };

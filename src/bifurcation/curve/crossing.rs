@@ -30,6 +30,7 @@ pub fn crossings<M: Model>(
     ) else {
         return out;
     };
+    sys.pin_tangent_arrivals(&unknowns(first));
     let (axis, value) = match line {
         Line::X(v) => (0, v),
         Line::Y(v) => (1, v),

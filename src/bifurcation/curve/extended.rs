@@ -25,13 +25,24 @@
 //! tangential). `Extended::correct_pair` replaces the border row by a
 //! second condition: a codimension-two point, solved directly where the
 //! curve's own system turns singular at it.
+//!
+//! On a symmetric motion every event has its mirror image half a cycle
+//! later. Where the curve's own event is a tangential arrival before a
+//! stick (a passable onset with `as > ak`), its mirror's velocity equation
+//! `f2` has a double root in the arrival's phase all along the curve, and
+//! the stick's start is free to first order. That row is replaced by the
+//! arrival's normal field `F_j = 0` (`Extended::pin_tangent_arrivals`),
+//! regular there; the dropped `f2` is checked after each correction.
 
 use crate::bifurcation::bordered::Correction;
 use crate::model::{Model, ParamSet};
 use crate::orbit::periodic::SwitchingPoint;
 
-use super::condition::{condition_scale, Evaluator};
+use super::condition::{condition_scale, field_at_end, Evaluator};
+use super::trace::HOLDS_TO;
 use super::{Condition, Plane};
+use crate::model::MappingKind;
+use crate::orbit::admissible::SAME_EVENT;
 
 /// A codimension-two point's equations hold when each residual is below this
 /// times its row's largest derivative ([`Extended::correct_pair`]), where
@@ -85,6 +96,13 @@ const FLOOR_FACTOR: f64 = 16.0;
 /// `1e-16 / 1e-7` of the condition's terms) still far below it.
 const FD_STEP: f64 = 1e-7;
 
+/// How nearly a motion's second half must mirror its first to be taken for
+/// a symmetric motion ([`Extended::pin_tangent_arrivals`]), relative to the
+/// motion's length scale and in radians: the start of a curve, located by
+/// a sweep, is symmetric to about its location tolerance; a motion of an
+/// oscillator without the symmetry is not symmetric at all.
+const MIRRORED: f64 = 1e-6;
+
 /// [`Extended::correct_pair`] stops after this many iterations without
 /// the merit halving, and takes the best iterate.
 const PAIR_STALL: usize = 8;
@@ -109,6 +127,10 @@ pub struct Extended<M: Model> {
     delta: Vec<f64>,
     pts: Vec<SwitchingPoint>,
     trial: Vec<f64>,
+    /// The flow segments whose arrival (before a stick) is tangential all
+    /// along the curve: their velocity row is the arrival's normal field
+    /// ([`Self::pin_tangent_arrivals`]).
+    pins: Vec<usize>,
 }
 
 impl<M: Model> Extended<M> {
@@ -142,7 +164,123 @@ impl<M: Model> Extended<M> {
             delta: vec![0.0; n],
             pts: vec![SwitchingPoint { phase: 0.0, x: 0.0 }; m],
             trial: vec![0.0; n],
+            pins: Vec::new(),
         }
+    }
+
+    /// Pin the mirror image of the curve's own arrival before a stick
+    /// where it is tangential with it all along the curve: `x` (a point of
+    /// the curve) a symmetric motion ([`Self::mirrored`]: point `k + m/2` is
+    /// point `k` mirrored, half a cycle later), the curve's condition a
+    /// margin at segment `s` and the arrival of segment `s + m/2`, before a
+    /// stick, tangential (normal field within [`SAME_EVENT`] of zero).
+    /// That arrival's velocity equation has a double root in its phase
+    /// (Newton halves the error per iteration, and the point is located
+    /// only to the square root of rounding), so the system solves `F_j = 0`
+    /// there instead. Shaw's oscillator (`coulomb` with `V = 0`) at W ≈
+    /// 0.41: the passable onset of
+    /// `P_{0_11 2_11 1_11 2_11 1_11 0_11 1_11 2_11 1_11 2_11}^3` at one
+    /// stick is its mirror's at the other; without the pin the system's
+    /// Jacobian has a singular value 2e-10 of its largest. An arrival that
+    /// is nearly tangential by coincidence (the paper model's period-adding
+    /// cascade) is not pinned: there the dropped velocity equation, only
+    /// quadratic in the arrival's phase, would hardly see the point leave
+    /// the curve. Returns how many arrivals are pinned (0 or 1).
+    pub(super) fn pin_tangent_arrivals(&mut self, x: &[f64]) -> usize {
+        self.pins.clear();
+        let Condition::Margin { segment: own, .. } = self.eval.condition else {
+            return 0;
+        };
+        let m = self.m;
+        if m % 2 != 0 || own >= m || !self.mirrored(x) {
+            return 0;
+        }
+        let k = (own + m / 2) % m;
+        let info = M::INFO;
+        let step = self.eval.steps[k];
+        let next = self.eval.steps[(k + 1) % m];
+        if info.mappings[step].kind == MappingKind::Stick
+            || info.mappings[next].kind != MappingKind::Stick
+        {
+            return 0;
+        }
+        let (_, b) = self.ends(x, k);
+        if field_at_end::<M>(&self.params(x), step, b, true, false).abs() <= SAME_EVENT {
+            self.pins.push(k);
+        }
+        self.pins.len()
+    }
+
+    /// Whether the switching points of `x` are a symmetric motion: point
+    /// `k + m/2` is point `k` mirrored (`−x`, within [`MIRRORED`] of `L`)
+    /// half a cycle later (`N π`, within [`MIRRORED`] radians).
+    fn mirrored(&self, x: &[f64]) -> bool {
+        let half = self.m / 2;
+        let shift = 0.5 * self.eval.shift;
+        (0..half).all(|k| {
+            let (a, b) = (2 * k, 2 * (k + half));
+            (x[a] + x[b]).abs() <= MIRRORED * self.length
+                && (x[b + 1] - x[a + 1] - shift).abs() <= MIRRORED
+        })
+    }
+
+    /// How many arrivals are pinned.
+    pub(super) fn pinned(&self) -> usize {
+        self.pins.len()
+    }
+
+    /// Every arrival's velocity equation back in the system.
+    pub(super) fn unpin(&mut self) {
+        self.pins.clear();
+    }
+
+    /// The largest dropped velocity equation `f2` of a pinned arrival at
+    /// `x`, over its row's largest derivative (0 with none pinned).
+    pub(super) fn dropped_residual(&self, x: &[f64]) -> f64 {
+        let p = self.params(x);
+        self.pins.iter().fold(0.0f64, |worst, &k| {
+            let (a, b) = self.ends(x, k);
+            let ev = M::mapping(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
+            let scale = (0..2).fold(0.0f64, |s, c| {
+                s.max(ev.d_prev[(1, c)].abs()).max(ev.d_next[(1, c)].abs())
+            });
+            let r = (ev.residual[1] / scale).abs();
+            if r.is_nan() {
+                f64::INFINITY
+            } else {
+                worst.max(r)
+            }
+        })
+    }
+
+    /// Row `2k + 1` (segment `k`'s velocity equation) replaced by its
+    /// arrival's normal field and that field's central differences in the
+    /// arrival point and the two parameters.
+    fn pin_row(&mut self, x: &[f64], k: usize) {
+        let (n, m) = (self.n, self.m);
+        let step = self.eval.steps[k];
+        let next = (k + 1) % m;
+        let row = 2 * k + 1;
+        let field = |s: &Self, at: &[f64]| {
+            let (_, b) = s.ends(at, k);
+            field_at_end::<M>(&s.params(at), step, b, true, false)
+        };
+        self.jac[row * n..(row + 1) * n]
+            .iter_mut()
+            .for_each(|c| *c = 0.0);
+        self.rhs[row] = -field(self, x);
+        let mut trial = std::mem::take(&mut self.trial);
+        trial.copy_from_slice(x);
+        for i in [2 * next, 2 * next + 1, n - 2, n - 1] {
+            let h = self.fd_step(x, i);
+            trial[i] = x[i] + h;
+            let fp = field(self, &trial);
+            trial[i] = x[i] - h;
+            let fm = field(self, &trial);
+            trial[i] = x[i];
+            self.jac[row * n + i] = (fp - fm) / (2.0 * h);
+        }
+        self.trial = trial;
     }
 
     /// The parameters the plane's two are set in.
@@ -383,6 +521,9 @@ impl<M: Model> Extended<M> {
                 }
             }
         }
+        for i in 0..self.pins.len() {
+            self.pin_row(x, self.pins[i]);
+        }
         // The condition's row: its value and central differences.
         let g = self.condition_row(x, 2 * m, false);
         if !g.is_finite() {
@@ -590,6 +731,28 @@ impl<M: Model> Extended<M> {
         tol: f64,
         max_iterations: usize,
     ) -> Correction {
+        let c = self.pair_newton(x, tol, max_iterations);
+        self.check_dropped(x, c)
+    }
+
+    /// A converged correction stands only if the velocity equations
+    /// dropped for pinned arrivals ([`Self::pin_tangent_arrivals`]) hold
+    /// to [`HOLDS_TO`] of their rows' largest derivatives.
+    fn check_dropped(&self, x: &[f64], c: Correction) -> Correction {
+        if !matches!(c, Correction::Converged { .. }) {
+            return c;
+        }
+        let r = self.dropped_residual(x);
+        if r <= HOLDS_TO {
+            return c;
+        }
+        Correction::Failed(format!(
+            "a pinned arrival is no longer tangential (its velocity equation holds to {r:.1e} only)"
+        ))
+    }
+
+    /// [`Self::correct_pair`]'s Newton iteration.
+    fn pair_newton(&mut self, x: &mut [f64], tol: f64, max_iterations: usize) -> Correction {
         let n = self.n;
         if self.pair.is_none() {
             return Correction::Failed("no second condition".into());
@@ -711,9 +874,17 @@ impl<M: Model> Extended<M> {
         };
         for k in 0..self.m {
             let (a, b) = self.ends(x, k);
-            let f = M::residual(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
+            let step = self.eval.steps[k];
+            let f = M::residual(&p, step, a.x, a.phase, b.x, b.phase);
             add(f[0], scale[2 * k]);
-            add(f[1], scale[2 * k + 1]);
+            if self.pins.contains(&k) {
+                add(
+                    field_at_end::<M>(&p, step, b, true, false),
+                    scale[2 * k + 1],
+                );
+            } else {
+                add(f[1], scale[2 * k + 1]);
+            }
         }
         let g = self.condition(x);
         let g2 = self.pair_condition(x);
@@ -728,6 +899,19 @@ impl<M: Model> Extended<M> {
     /// unit (displacements over `L`, phases in radians, parameters over
     /// their spans). No allocation.
     pub fn correct(
+        &mut self,
+        x: &mut [f64],
+        border: &[f64],
+        anchor: &[f64],
+        tol: f64,
+        max_iterations: usize,
+    ) -> Correction {
+        let c = self.newton(x, border, anchor, tol, max_iterations);
+        self.check_dropped(x, c)
+    }
+
+    /// [`Self::correct`]'s Newton iteration.
+    fn newton(
         &mut self,
         x: &mut [f64],
         border: &[f64],

@@ -257,7 +257,18 @@ pub fn trace<M: Model>(
     let mut border = vec![0.0; n];
     let mut corrected = None;
     let mut why = String::new();
-    for axis in [1, 0] {
+    // Arrivals tangential with the curve's own event are pinned (the
+    // regular form of their double root); should the start not solve so,
+    // it is tried without.
+    let pins: &[bool] = if tracer.sys.pin_tangent_arrivals(&x) > 0 {
+        &[true, false]
+    } else {
+        &[false]
+    };
+    for (&pin, axis) in pins.iter().flat_map(|pin| [(pin, 1), (pin, 0)]) {
+        if !pin {
+            tracer.sys.unpin();
+        }
         tracer.sys.axis(axis, &mut border);
         let mut trial = x.clone();
         match tracer
@@ -285,6 +296,9 @@ pub fn trace<M: Model>(
         let p = tracer.sys.params(&x);
         let pts = to_point(&x).points;
         tracer.sys.eval.exclude_companions(&p, &pts);
+        if tracer.sys.pinned() > 0 {
+            tracer.sys.pin_tangent_arrivals(&x);
+        }
     }
     let mut t = vec![0.0; n];
     let mut tangent = Err(String::new());
