@@ -22,34 +22,28 @@
 //! The corrector stops when the Newton step is below the tolerance, or
 //! when it has stopped contracting within `1e3` times it (rounding,
 //! amplified by the conditioning, as where an arrival before a stick turns
-//! tangential). `Extended::correct_pair` replaces the border row by a
-//! second condition: a codimension-two point, solved directly where the
-//! curve's own system turns singular at it.
+//! tangential). `Extended::correct_pair` (`extended/pair.rs`) replaces
+//! the border row by a second condition: a codimension-two point, solved
+//! directly where the curve's own system turns singular at it.
 //!
 //! On a symmetric motion every event has its mirror image half a cycle
 //! later. Where the curve's own event is a tangential arrival before a
 //! stick (a passable onset with `as > ak`), its mirror's velocity equation
 //! `f2` has a double root in the arrival's phase all along the curve, and
 //! the stick's start is free to first order. That row is replaced by the
-//! arrival's normal field `F_j = 0` (`Extended::pin_tangent_arrivals`),
-//! regular there; the dropped `f2` is checked after each correction.
+//! arrival's normal field `F_j = 0` (`Extended::pin_tangent_arrivals`,
+//! `extended/mirror.rs`), regular there; the dropped `f2` is checked after
+//! each correction.
 
 use crate::bifurcation::bordered::Correction;
 use crate::model::{Model, ParamSet};
 use crate::orbit::periodic::SwitchingPoint;
 
-use super::condition::{condition_scale, field_at_end, Evaluator};
-use super::trace::HOLDS_TO;
+use super::condition::{condition_scale, Evaluator};
 use super::{Condition, Plane};
-use crate::model::MappingKind;
-use crate::orbit::admissible::SAME_EVENT;
 
-/// A codimension-two point's equations hold when each residual is below this
-/// times its row's largest derivative ([`Extended::correct_pair`]), where
-/// the iteration stalls. Measured: the `^7` cascade curve's pair with its
-/// segment 21 onset stalls at `2.7e-12`; the test's bar on a curve point's
-/// condition is `1e-10`.
-const PAIR_MERIT: f64 = 1e-11;
+mod mirror;
+mod pair;
 
 /// The equations hold to rounding when each residual is below this times
 /// its row's largest derivative ([`Extended::correct`]). Measured: at the
@@ -95,17 +89,6 @@ const FLOOR_FACTOR: f64 = 16.0;
 /// truncation error is 100 times smaller and the rounding error (about
 /// `1e-16 / 1e-7` of the condition's terms) still far below it.
 const FD_STEP: f64 = 1e-7;
-
-/// How nearly a motion's second half must mirror its first to be taken for
-/// a symmetric motion ([`Extended::pin_tangent_arrivals`]), relative to the
-/// motion's length scale and in radians: the start of a curve, located by
-/// a sweep, is symmetric to about its location tolerance; a motion of an
-/// oscillator without the symmetry is not symmetric at all.
-const MIRRORED: f64 = 1e-6;
-
-/// [`Extended::correct_pair`] stops after this many iterations without
-/// the merit halving, and takes the best iterate.
-const PAIR_STALL: usize = 8;
 
 /// The extended system of one curve, with its workspace.
 #[derive(Clone, Debug)]
@@ -166,121 +149,6 @@ impl<M: Model> Extended<M> {
             trial: vec![0.0; n],
             pins: Vec::new(),
         }
-    }
-
-    /// Pin the mirror image of the curve's own arrival before a stick
-    /// where it is tangential with it all along the curve: `x` (a point of
-    /// the curve) a symmetric motion ([`Self::mirrored`]: point `k + m/2` is
-    /// point `k` mirrored, half a cycle later), the curve's condition a
-    /// margin at segment `s` and the arrival of segment `s + m/2`, before a
-    /// stick, tangential (normal field within [`SAME_EVENT`] of zero).
-    /// That arrival's velocity equation has a double root in its phase
-    /// (Newton halves the error per iteration, and the point is located
-    /// only to the square root of rounding), so the system solves `F_j = 0`
-    /// there instead. Shaw's oscillator (`coulomb` with `V = 0`) at W ≈
-    /// 0.41: the passable onset of
-    /// `P_{0_11 2_11 1_11 2_11 1_11 0_11 1_11 2_11 1_11 2_11}^3` at one
-    /// stick is its mirror's at the other; without the pin the system's
-    /// Jacobian has a singular value 2e-10 of its largest. An arrival that
-    /// is nearly tangential by coincidence (the paper model's period-adding
-    /// cascade) is not pinned: there the dropped velocity equation, only
-    /// quadratic in the arrival's phase, would hardly see the point leave
-    /// the curve. Returns how many arrivals are pinned (0 or 1).
-    pub(super) fn pin_tangent_arrivals(&mut self, x: &[f64]) -> usize {
-        self.pins.clear();
-        let Condition::Margin { segment: own, .. } = self.eval.condition else {
-            return 0;
-        };
-        let m = self.m;
-        if m % 2 != 0 || own >= m || !self.mirrored(x) {
-            return 0;
-        }
-        let k = (own + m / 2) % m;
-        let info = M::INFO;
-        let step = self.eval.steps[k];
-        let next = self.eval.steps[(k + 1) % m];
-        if info.mappings[step].kind == MappingKind::Stick
-            || info.mappings[next].kind != MappingKind::Stick
-        {
-            return 0;
-        }
-        let (_, b) = self.ends(x, k);
-        if field_at_end::<M>(&self.params(x), step, b, true, false).abs() <= SAME_EVENT {
-            self.pins.push(k);
-        }
-        self.pins.len()
-    }
-
-    /// Whether the switching points of `x` are a symmetric motion: point
-    /// `k + m/2` is point `k` mirrored (`−x`, within [`MIRRORED`] of `L`)
-    /// half a cycle later (`N π`, within [`MIRRORED`] radians).
-    fn mirrored(&self, x: &[f64]) -> bool {
-        let half = self.m / 2;
-        let shift = 0.5 * self.eval.shift;
-        (0..half).all(|k| {
-            let (a, b) = (2 * k, 2 * (k + half));
-            (x[a] + x[b]).abs() <= MIRRORED * self.length
-                && (x[b + 1] - x[a + 1] - shift).abs() <= MIRRORED
-        })
-    }
-
-    /// How many arrivals are pinned.
-    pub(super) fn pinned(&self) -> usize {
-        self.pins.len()
-    }
-
-    /// Every arrival's velocity equation back in the system.
-    pub(super) fn unpin(&mut self) {
-        self.pins.clear();
-    }
-
-    /// The largest dropped velocity equation `f2` of a pinned arrival at
-    /// `x`, over its row's largest derivative (0 with none pinned).
-    pub(super) fn dropped_residual(&self, x: &[f64]) -> f64 {
-        let p = self.params(x);
-        self.pins.iter().fold(0.0f64, |worst, &k| {
-            let (a, b) = self.ends(x, k);
-            let ev = M::mapping(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
-            let scale = (0..2).fold(0.0f64, |s, c| {
-                s.max(ev.d_prev[(1, c)].abs()).max(ev.d_next[(1, c)].abs())
-            });
-            let r = (ev.residual[1] / scale).abs();
-            if r.is_nan() {
-                f64::INFINITY
-            } else {
-                worst.max(r)
-            }
-        })
-    }
-
-    /// Row `2k + 1` (segment `k`'s velocity equation) replaced by its
-    /// arrival's normal field and that field's central differences in the
-    /// arrival point and the two parameters.
-    fn pin_row(&mut self, x: &[f64], k: usize) {
-        let (n, m) = (self.n, self.m);
-        let step = self.eval.steps[k];
-        let next = (k + 1) % m;
-        let row = 2 * k + 1;
-        let field = |s: &Self, at: &[f64]| {
-            let (_, b) = s.ends(at, k);
-            field_at_end::<M>(&s.params(at), step, b, true, false)
-        };
-        self.jac[row * n..(row + 1) * n]
-            .iter_mut()
-            .for_each(|c| *c = 0.0);
-        self.rhs[row] = -field(self, x);
-        let mut trial = std::mem::take(&mut self.trial);
-        trial.copy_from_slice(x);
-        for i in [2 * next, 2 * next + 1, n - 2, n - 1] {
-            let h = self.fd_step(x, i);
-            trial[i] = x[i] + h;
-            let fp = field(self, &trial);
-            trial[i] = x[i] - h;
-            let fm = field(self, &trial);
-            trial[i] = x[i];
-            self.jac[row * n + i] = (fp - fm) / (2.0 * h);
-        }
-        self.trial = trial;
     }
 
     /// The parameters the plane's two are set in.
@@ -718,129 +586,6 @@ impl<M: Model> Extended<M> {
         size
     }
 
-    /// Newton on the mapping equations, the curve's condition and the
-    /// second condition [`Self::pair`] (both parameters free, no border
-    /// row): a codimension-two point, from `x` (modified in place).
-    /// Converged as [`Self::correct`]. Where an arrival before a stick
-    /// turns tangential the curve's own system is singular (the stick's
-    /// start is free along the stick to first order); the force criterion
-    /// at that arrival pins it, so this system stays regular there.
-    pub(super) fn correct_pair(
-        &mut self,
-        x: &mut [f64],
-        tol: f64,
-        max_iterations: usize,
-    ) -> Correction {
-        let c = self.pair_newton(x, tol, max_iterations);
-        self.check_dropped(x, c)
-    }
-
-    /// A converged correction stands only if the velocity equations
-    /// dropped for pinned arrivals ([`Self::pin_tangent_arrivals`]) hold
-    /// to [`HOLDS_TO`] of their rows' largest derivatives.
-    fn check_dropped(&self, x: &[f64], c: Correction) -> Correction {
-        if !matches!(c, Correction::Converged { .. }) {
-            return c;
-        }
-        let r = self.dropped_residual(x);
-        if r <= HOLDS_TO {
-            return c;
-        }
-        Correction::Failed(format!(
-            "a pinned arrival is no longer tangential (its velocity equation holds to {r:.1e} only)"
-        ))
-    }
-
-    /// [`Self::correct_pair`]'s Newton iteration.
-    fn pair_newton(&mut self, x: &mut [f64], tol: f64, max_iterations: usize) -> Correction {
-        let n = self.n;
-        if self.pair.is_none() {
-            return Correction::Failed("no second condition".into());
-        }
-        let ulps = 8.0 * f64::EPSILON / tol.max(f64::MIN_POSITIVE);
-        let mut last = f64::INFINITY;
-        let mut scale = vec![0.0; n];
-        let mut from = x.to_vec();
-        // The iterate with the smallest merit, and how many iterations
-        // since the merit last halved.
-        let mut best = (f64::INFINITY, x.to_vec());
-        let mut stalled = 0;
-        for it in 0..max_iterations {
-            if let Err(why) = self.assemble(x) {
-                return Correction::Failed(why);
-            }
-            let g2 = self.condition_row(x, n - 1, true);
-            if !g2.is_finite() || self.jac[(n - 1) * n..].iter().any(|v| !v.is_finite()) {
-                return Correction::Failed(format!(
-                    "the second condition is not defined here ({g2:e})"
-                ));
-            }
-            // Each row's residual over its largest derivative: the merit
-            // of a step, in the units the elimination equilibrates to.
-            for (i, sc) in scale.iter_mut().enumerate() {
-                *sc = self.jac[i * n..(i + 1) * n]
-                    .iter()
-                    .fold(0.0f64, |a, v| a.max(v.abs()));
-            }
-            let merit = self
-                .rhs
-                .iter()
-                .zip(&scale)
-                .fold(0.0f64, |a, (r, s)| a.max(r.abs() / s));
-            stalled = if merit < 0.5 * best.0 { 0 } else { stalled + 1 };
-            if merit < best.0 {
-                best.0 = merit;
-                best.1.copy_from_slice(x);
-            }
-            // The merit has reached its rounding floor: where further
-            // arrivals before sticks are almost tangential as well (a
-            // period-adding cascade's accumulating codimension-two points)
-            // their stick starts are nearly free along the sticks, and the
-            // steps only stir them at the rounding level times that
-            // conditioning.
-            if stalled >= PAIR_STALL {
-                break;
-            }
-            if let Err(why) = self.eliminate() {
-                return Correction::Failed(why);
-            }
-            from.copy_from_slice(x);
-            let mut size = self.step(x, ulps);
-            if size.is_nan() {
-                return Correction::Failed("the Newton step is not finite".into());
-            }
-            // Damped: near a second arrival that is almost tangential the
-            // full step overshoots onto the far root of its arrival
-            // equation; halve it until the merit falls.
-            if size > 1e3 * tol {
-                for _ in 0..12 {
-                    if self.pair_merit(x, &scale) < merit {
-                        break;
-                    }
-                    for ((xi, a), d) in x.iter_mut().zip(&from).zip(&mut self.delta) {
-                        *d *= 0.5;
-                        *xi = a + *d;
-                    }
-                    size *= 0.5;
-                }
-            }
-            if size <= tol || (it >= 1 && size <= 1e3 * tol && size > 0.5 * last) {
-                return Correction::Converged { iterations: it + 1 };
-            }
-            last = size;
-        }
-        if best.0 <= PAIR_MERIT {
-            x.copy_from_slice(&best.1);
-            return Correction::Converged {
-                iterations: max_iterations,
-            };
-        }
-        Correction::Failed(format!(
-            "no convergence in {max_iterations} iterations (smallest scaled residual {:.3e})",
-            best.0
-        ))
-    }
-
     /// The largest of the first `rows` assembled residuals, each over its
     /// row's largest derivative (NaN counts as infinite).
     fn scaled_residual(&self, rows: usize) -> f64 {
@@ -856,41 +601,6 @@ impl<M: Model> Extended<M> {
                 a.max(r)
             }
         })
-    }
-
-    /// The largest residual of the pair system at `x`, each row over
-    /// `scale` (NaN counts as infinite).
-    fn pair_merit(&mut self, x: &[f64], scale: &[f64]) -> f64 {
-        let n = self.n;
-        let p = self.params(x);
-        let mut worst = 0.0f64;
-        let mut add = |v: f64, s: f64| {
-            let r = (v / s).abs();
-            worst = if r.is_nan() {
-                f64::INFINITY
-            } else {
-                worst.max(r)
-            };
-        };
-        for k in 0..self.m {
-            let (a, b) = self.ends(x, k);
-            let step = self.eval.steps[k];
-            let f = M::residual(&p, step, a.x, a.phase, b.x, b.phase);
-            add(f[0], scale[2 * k]);
-            if self.pins.contains(&k) {
-                add(
-                    field_at_end::<M>(&p, step, b, true, false),
-                    scale[2 * k + 1],
-                );
-            } else {
-                add(f[1], scale[2 * k + 1]);
-            }
-        }
-        let g = self.condition(x);
-        let g2 = self.pair_condition(x);
-        add(g, scale[2 * self.m]);
-        add(g2, scale[n - 1]);
-        worst
     }
 
     /// Newton on the mapping equations, the condition and
