@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The seven `curves` runs the README's "Regime maps" section quotes, each run
 # alone and timed (wall), with its counts: curves, codimension-two points,
-# and ends that are neither on the box's edge nor at a codimension-two
-# point (a corrector failure, a crawl, the point limit).
+# ends that are neither on the box's edge nor at a codimension-two
+# point (a corrector failure, a crawl, the point limit), and located
+# transitions whose curve could not be traced (`failed_starts`).
 #
 #   benches/curves-runs.sh            # all seven (pl4 takes most of the time)
 #   benches/curves-runs.sh s8box      # one of them, by name
@@ -35,7 +36,8 @@ d = json.load(open(path))
 ends = [e for c in d["curves"] for e in (c["from"], c["to"]) if e]
 bad = [e for e in ends if e["end"] not in ("box_edge", "codim2")]
 print(f"{name}: {len(d['curves'])} curves, {len(d['codim2'])} codim-2 points, "
-      f"{len(bad)}/{len(ends)} other ends, {float(t):.1f} s")
+      f"{len(bad)}/{len(ends)} other ends, {len(d['failed_starts'])} failed starts, "
+      f"{float(t):.1f} s")
 PY
 }
 

@@ -45,7 +45,7 @@ fn json_has_the_documented_shape_and_is_deterministic() {
     let first = run(&args);
     assert!(first.status.success(), "{}", text(&first.stderr));
     let v: Value = serde_json::from_slice(&first.stdout).expect("JSON");
-    assert_eq!(keys(&v), ["x", "y", "curves", "codim2"]);
+    assert_eq!(keys(&v), ["x", "y", "curves", "codim2", "failed_starts"]);
     assert_eq!(v["x"], "W");
     assert_eq!(v["y"], "Q0");
     let curves = v["curves"].as_array().expect("curves");
@@ -105,6 +105,13 @@ fn json_has_the_documented_shape_and_is_deterministic() {
     }
     for q in v["codim2"].as_array().expect("codim2") {
         assert_eq!(keys(q), ["W", "Q0", "kinds", "curves"]);
+    }
+    for f in v["failed_starts"].as_array().expect("failed_starts") {
+        assert_eq!(
+            keys(f),
+            ["kind", "boundary", "structure", "W", "Q0", "why"],
+            "{f}"
+        );
     }
     let second = run(&args);
     assert_eq!(text(&first.stdout), text(&second.stdout), "two runs differ");

@@ -44,6 +44,7 @@ fn set(x: [f64; 2], y: [f64; 2], curves: Vec<CurveSummary>) -> CurveSet {
         y: ("Q0".to_string(), y),
         curves,
         codim2: Vec::new(),
+        failed_starts: Vec::new(),
     }
 }
 

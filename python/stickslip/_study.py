@@ -99,8 +99,10 @@ class Curves(Result):
     curves as in the CLI's JSON (``kind``, ``boundary``, ``structure``,
     ``from``, ``to``, ``points``, ``at``), except that each curve's
     ``points`` and ``at`` are ``n × 2`` numpy arrays of ``(x, y)``;
-    ``codim2`` lists the codimension-two points. ``to_dict()`` is exactly
-    ``stickslip curves --json``.
+    ``codim2`` lists the codimension-two points; ``failed_starts`` the
+    located transitions whose curve could not be traced (``kind``,
+    ``boundary``, ``structure``, the two parameters, ``why``): curves the
+    run is missing. ``to_dict()`` is exactly ``stickslip curves --json``.
     """
 
     def __init__(self, data: Dict[str, Any]) -> None:
@@ -114,6 +116,7 @@ class Curves(Result):
             c["at"] = np.asarray(c["at"], dtype=float).reshape(-1, 2)
             self.curves.append(c)
         self.codim2: List[Dict[str, Any]] = data["codim2"]
+        self.failed_starts: List[Dict[str, Any]] = data["failed_starts"]
 
     def __len__(self) -> int:
         return len(self.curves)

@@ -179,6 +179,7 @@ def test_curves_agree_with_the_cli(cli, paper):
     c = paper.curves(x=("W", 3, 5), y=("Q0", 60, 80), seed={"Q0": 70}, at=[("W", 4)], count=30, spread=0)
     assert c.to_dict() == theirs
     assert len(c) == len(theirs["curves"]) > 0 and c.x_name == "W" and c.y_name == "Q0"
+    assert c.failed_starts == theirs["failed_starts"]
     for ours, their in zip(c.curves, theirs["curves"]):
         assert ours["points"].shape == (len(their["points"]), 2)
         assert np.array_equal(ours["points"], np.array(their["points"]))

@@ -9,7 +9,18 @@ use serde_json::{json, Map, Value};
 use crate::study::curves::{CurveSet, CurveSummary, EndSummary};
 
 /// The keys of the ends and codim-2 points, which a parameter's name must not be.
-const KEYS: [&str; 6] = ["end", "codim2", "detail", "residual", "kinds", "curves"];
+const KEYS: [&str; 10] = [
+    "end",
+    "codim2",
+    "detail",
+    "residual",
+    "kinds",
+    "curves",
+    "kind",
+    "boundary",
+    "structure",
+    "why",
+];
 
 fn clash(name: &str) -> serde_json::Error {
     serde::ser::Error::custom(format!(
@@ -41,7 +52,8 @@ fn end_json(set: &CurveSet, end: &Option<EndSummary>) -> Value {
 
 /// The curve set as JSON: `{"x", "y", "curves": [{"kind", "boundary",
 /// "structure", "from", "to", "points", "at"}], "codim2": [{<x>, <y>,
-/// "kinds", "curves"}]}`.
+/// "kinds", "curves"}], "failed_starts": [{"kind", "boundary",
+/// "structure", <x>, <y>, "why"}]}`.
 pub fn json(set: &CurveSet) -> Result<String, serde_json::Error> {
     for name in [&set.x.0, &set.y.0] {
         if KEYS.contains(&name.as_str()) {
@@ -75,11 +87,26 @@ pub fn json(set: &CurveSet) -> Result<String, serde_json::Error> {
             Value::Object(o)
         })
         .collect();
+    let failed: Vec<Value> = set
+        .failed_starts
+        .iter()
+        .map(|f| {
+            let mut o = Map::new();
+            o.insert("kind".into(), json!(f.kind));
+            o.insert("boundary".into(), json!(f.boundary));
+            o.insert("structure".into(), json!(f.structure));
+            o.insert(set.x.0.clone(), json!(f.point[0]));
+            o.insert(set.y.0.clone(), json!(f.point[1]));
+            o.insert("why".into(), json!(f.why));
+            Value::Object(o)
+        })
+        .collect();
     serde_json::to_string_pretty(&json!({
         "x": set.x.0,
         "y": set.y.0,
         "curves": curves,
         "codim2": codim2,
+        "failed_starts": failed,
     }))
 }
 
@@ -171,6 +198,30 @@ pub fn text(set: &CurveSet, settings: &str) -> String {
             );
         }
     }
+    if !set.failed_starts.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nMissing curves: {} located transition(s) whose curve could not be traced",
+            set.failed_starts.len()
+        );
+        for f in &set.failed_starts {
+            let boundary = f
+                .boundary
+                .as_deref()
+                .map_or(String::new(), |b| format!(" on {b}"));
+            let _ = writeln!(
+                out,
+                "  {}{boundary} of {} at {} = {:.10}, {} = {:.10}: {}",
+                f.kind.name(),
+                f.structure,
+                set.x.0,
+                f.point[0],
+                set.y.0,
+                f.point[1],
+                f.why
+            );
+        }
+    }
     out
 }
 
@@ -206,6 +257,7 @@ mod tests {
                 kinds: vec![TransitionKind::Grazing, TransitionKind::StickOnset],
                 curves: vec![0],
             }],
+            failed_starts: Vec::new(),
         }
     }
 
@@ -221,6 +273,34 @@ mod tests {
         assert!(c["from"].get("codim2").is_none());
         assert_eq!(v["codim2"][0]["Q0"], 40.0);
         assert_eq!(v["codim2"][0]["kinds"][1], "stick_onset");
+    }
+
+    #[test]
+    fn a_failed_start_is_listed_in_json_and_text() {
+        let mut s = set();
+        let v: Value = serde_json::from_str(&json(&s).unwrap()).unwrap();
+        assert_eq!(v["failed_starts"].as_array().map(Vec::len), Some(0));
+        assert!(!text(&s, "").contains("Missing curves"));
+        s.failed_starts.push(crate::study::curves::FailedStart {
+            kind: TransitionKind::PassableOnset,
+            boundary: Some("Sigma1".into()),
+            structure: "P_{0_11 1_11 2_11}".into(),
+            point: [0.41, 1.8],
+            why: "the corrector does not converge".into(),
+        });
+        let v: Value = serde_json::from_str(&json(&s).unwrap()).unwrap();
+        let f = &v["failed_starts"][0];
+        assert_eq!(f["kind"], "passable_onset");
+        assert_eq!(f["boundary"], "Sigma1");
+        assert_eq!(f["structure"], "P_{0_11 1_11 2_11}");
+        assert_eq!((f["W"].as_f64(), f["Q0"].as_f64()), (Some(0.41), Some(1.8)));
+        assert_eq!(f["why"], "the corrector does not converge");
+        let t = text(&s, "");
+        assert!(
+            t.contains("Missing curves: 1 located transition(s)")
+                && t.contains("passable_onset on Sigma1 of P_{0_11 1_11 2_11} at W = 0.4100000000, Q0 = 1.8000000000: the corrector does not converge"),
+            "{t}"
+        );
     }
 
     #[test]

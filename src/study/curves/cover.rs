@@ -27,7 +27,9 @@ use crate::study::sweep::SweepOptions;
 
 use super::codim2::{codim2_points, same_place, SAME_PLACE};
 use super::seeds::{structure_name, sweep_line, LineSweep, Start};
-use super::{CurveSet, CurveSummary, CurvesError, CurvesOptions, CurvesSettings, EndSummary};
+use super::{
+    CurveSet, CurveSummary, CurvesError, CurvesOptions, CurvesSettings, EndSummary, FailedStart,
+};
 
 /// A transition and a curve cross a line at one place when this close
 /// (relative to the value, at least absolute).
@@ -52,6 +54,8 @@ pub(super) struct Cover<'a, M: Model> {
     sweeps: Vec<LineSweep>,
     /// The curves traced, in the order found.
     curves: Vec<Curve>,
+    /// The starts whose trace failed, with why.
+    failed: Vec<(Start, String)>,
     _model: std::marker::PhantomData<M>,
 }
 
@@ -95,6 +99,7 @@ impl<'a, M: Model> Cover<'a, M> {
             settings,
             sweeps: Vec::new(),
             curves: Vec::new(),
+            failed: Vec::new(),
             _model: std::marker::PhantomData,
         }
     }
@@ -121,18 +126,19 @@ impl<'a, M: Model> Cover<'a, M> {
             if self.on_curve(start) {
                 continue;
             }
-            let Ok(curve) = trace::<M>(
+            match trace::<M>(
                 self.base,
                 &self.plane,
                 start.structure.as_ref(),
                 &start.point,
                 start.condition,
                 &self.settings.curve,
-            ) else {
-                continue;
-            };
-            if !curve.points.is_empty() {
-                self.curves.push(curve);
+            ) {
+                Ok(curve) if !curve.points.is_empty() => self.curves.push(curve),
+                Ok(_) => self
+                    .failed
+                    .push((start.clone(), "the curve has no point".into())),
+                Err(e) => self.failed.push((start.clone(), e.to_string())),
             }
         }
     }
@@ -370,6 +376,22 @@ impl<'a, M: Model> Cover<'a, M> {
 
     /// The curves in a stable order, their codim-2 points and `--at` crossings.
     pub fn finish(self, opts: &CurvesOptions) -> (CurveSet, Vec<Curve>) {
+        // A failed start that a curve traced from elsewhere passes is no
+        // missing curve.
+        let failed_starts = self
+            .failed
+            .iter()
+            .filter(|(start, _)| !self.on_curve(start))
+            .map(|(start, why)| FailedStart {
+                kind: start.kind,
+                boundary: start
+                    .boundary
+                    .map(|k| M::INFO.boundaries[k].label.to_string()),
+                structure: structure_name::<M>(start.structure.as_ref()),
+                point: [start.point.x, start.point.y],
+                why: why.clone(),
+            })
+            .collect();
         let mut curves = self.curves;
         let key = |c: &Curve| {
             let first = c
@@ -443,6 +465,7 @@ impl<'a, M: Model> Cover<'a, M> {
             y: opts.y.clone(),
             curves: summaries,
             codim2,
+            failed_starts,
         };
         (set, curves)
     }

@@ -86,6 +86,22 @@ pub struct Codim2Point {
     pub curves: Vec<usize>,
 }
 
+/// A transition a sweep located whose curve could not be traced from it,
+/// and that no traced curve passes: a curve the run is missing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FailedStart {
+    /// The transition.
+    pub kind: TransitionKind,
+    /// The boundary involved (its name), if any.
+    pub boundary: Option<String>,
+    /// The motion: `P_{...}` (with `^N`) or `NM`.
+    pub structure: String,
+    /// Where it was located: `[x, y]`.
+    pub point: [f64; 2],
+    /// Why the trace failed.
+    pub why: String,
+}
+
 /// Everything a curves run found.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CurveSet {
@@ -97,6 +113,8 @@ pub struct CurveSet {
     pub curves: Vec<CurveSummary>,
     /// The codimension-two points.
     pub codim2: Vec<Codim2Point>,
+    /// The located transitions whose curve is missing (its trace failed).
+    pub failed_starts: Vec<FailedStart>,
 }
 
 /// Why a curves run could not run.
