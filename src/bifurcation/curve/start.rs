@@ -257,9 +257,9 @@ pub fn trace<M: Model>(
     let mut border = vec![0.0; n];
     let mut corrected = None;
     let mut why = String::new();
-    // Arrivals tangential with the curve's own event are pinned (the
-    // regular form of their double root); should the start not solve so,
-    // it is tried without.
+    // On a symmetric motion the mirror of the curve's own tangential
+    // arrival is pinned (the regular form of its double root); should the
+    // start not solve so, it is tried without.
     let pins: &[bool] = if tracer.sys.pin_tangent_arrivals(&x) > 0 {
         &[true, false]
     } else {
