@@ -209,6 +209,7 @@ class Model:
         spread: Optional[int] = None,
         max_mappings: Optional[int] = None,
         probes: Optional[int] = None,
+        edges: bool = False,
         **fixed: Number,
     ) -> Curves:
         """The transition curves over the box ``x × y``, each side
@@ -224,7 +225,9 @@ class Model:
         ``max_mappings``: the longest motion whose transitions are traced
         (default 24; ``--max-mappings``); ``probes``: short sweeps across
         each curve at this many places, finding the bands no line crosses
-        (default 4; 0 turns them off; ``--probes``)."""
+        (default 0, off; ``--probes``); ``edges``: sweep the box's four
+        edges too, where every curve that leaves the box crosses
+        (``--edges``)."""
         data = _native.curves(
             self.name,
             _pairs(fixed),
@@ -236,6 +239,7 @@ class Model:
             _count("spread", spread, 0),
             _count("max_mappings", max_mappings, 0),
             _count("probes", probes, 0),
+            bool(edges),
         )
         return Curves(json.loads(data))
 

@@ -84,6 +84,7 @@ def curves(
     spread: Optional[int] = None,
     max_mappings: Optional[int] = None,
     probes: Optional[int] = None,
+    edges: bool = False,
 ) -> str: ...
 def lyapunov(
     model: str,

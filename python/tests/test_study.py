@@ -239,6 +239,15 @@ def test_curves_probes_agree_with_the_cli(cli, paper):
         paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), probes=-1)
 
 
+def test_curves_edges_agree_with_the_cli(cli, paper):
+    args = ("--x", "W=3:4", "--y", "Q0=65:75", "--count", "10", "--spread", "0", "--json")
+    theirs = json.loads(ok(cli, "curves", *args, "--edges"))
+    edged = paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0, edges=True)
+    assert edged.to_dict() == theirs
+    plain = paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0)
+    assert plain.to_dict() != theirs
+
+
 # ---------------------------------------------------------------- lyapunov
 
 

@@ -51,6 +51,10 @@ pub struct CurvesArgs {
     /// Extra seed lines spread evenly over the box, this many each way.
     #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().spread)]
     spread: usize,
+    /// Sweep the box's four edges too: every curve that leaves the box
+    /// crosses one (more curves, longer runs: README, "Regime maps").
+    #[arg(long)]
+    edges: bool,
     /// Trace the transitions of motions of at most this many mappings (the
     /// long cycles of period-adding cascades cost a continuation of that
     /// many switching points each).
@@ -132,6 +136,7 @@ impl WithModel for CurvesCmd {
         let settings = CurvesSettings {
             count: self.args.count,
             spread: self.args.spread,
+            edges: self.args.edges,
             max_mappings: self.args.max_mappings,
             probes: self.args.probes,
             ..CurvesSettings::default()

@@ -48,11 +48,12 @@ impl Command for Curves {
 /// along the other parameter), with their crossings of the lines `at`;
 /// `count` grid values per line's sweep, `spread` extra lines each way,
 /// `max_mappings` the longest motion whose transitions are traced,
-/// `probes` the short sweeps across each curve.
+/// `probes` the short sweeps across each curve, `edges` the box's edges
+/// swept too.
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None))]
+#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None, edges = false))]
 pub fn curves(
     py: Python<'_>,
     model: &str,
@@ -65,6 +66,7 @@ pub fn curves(
     spread: Option<usize>,
     max_mappings: Option<usize>,
     probes: Option<usize>,
+    edges: bool,
 ) -> PyResult<String> {
     let defaults = CurvesSettings::default();
     let cmd = Curves {
@@ -78,6 +80,7 @@ pub fn curves(
             spread: spread.unwrap_or(defaults.spread),
             max_mappings: max_mappings.unwrap_or(defaults.max_mappings),
             probes: probes.unwrap_or(defaults.probes),
+            edges,
             ..defaults
         },
     };

@@ -42,6 +42,29 @@ pub(super) fn eigen_value(kind: TransitionKind, dp: &Matrix2<f64>) -> f64 {
     }
 }
 
+/// The mirrored half-cycle map `R DG` of a symmetric motion at `points`
+/// (the whole cycle's): `DG` the product of the first `half` mappings'
+/// local Jacobians, ordered `(W t, x)`, and `R = diag(1, −1)` the mirror
+/// `x → −x` (the phase's shift by `N π` is a translation). The cycle's
+/// `DP = (R DG)²`, so the eigenvalue `−1` of `R DG` is the `+1` of `DP`
+/// where the symmetric motion's asymmetric pair branches off (a
+/// pitchfork). `Err` with the mapping whose arrival is tangential.
+pub(super) fn mirrored_half_map<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    half: usize,
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> Result<Matrix2<f64>, usize> {
+    let mut dg = Matrix2::identity();
+    for (k, (&step, a)) in steps.iter().zip(points).take(half).enumerate() {
+        let b = crate::orbit::periodic::arrival(points, k, shift);
+        let e = M::mapping(p, step, a.x, a.phase, b.x, b.phase);
+        dg = e.local_jacobian().ok_or(k)? * dg;
+    }
+    Ok(Matrix2::new(1.0, 0.0, 0.0, -1.0) * dg)
+}
+
 /// The margin of the no-motion regime of domain `j` to boundary `k`
 /// (positive: the steady response stays off it); NaN if there is none.
 pub(super) fn rest_margin<M: Model>(p: &M::Params, j: usize, k: usize) -> f64 {
@@ -126,6 +149,11 @@ pub(super) struct Evaluator<M: Model> {
     /// The no-motion regime's domain of a `RestGrazing` condition.
     pub rest_domain: usize,
     pub sim: Simulator<M>,
+    /// Half the structure's length when the curve is a symmetric motion's
+    /// pitchfork, solved on the symmetric motions alone: the eigenvalue
+    /// test function is then that of the mirrored half-cycle map
+    /// ([`mirrored_half_map`]), `det(I + R DG)`; 0 otherwise.
+    pub half: usize,
     /// The conditions left out of [`Self::other`] (the curve's own and
     /// those that vanish with it), the first `excluded_len`.
     excluded: [ConditionId; 8],
@@ -170,6 +198,7 @@ impl<M: Model> Evaluator<M> {
             structure: structure.cloned(),
             rest_domain,
             sim,
+            half: 0,
             excluded: [(ViolationKind::Other, usize::MAX, None); MAX_EXCLUDED],
             excluded_len: match condition {
                 Condition::Margin { .. } => 1,
@@ -274,6 +303,13 @@ impl<M: Model> Evaluator<M> {
     /// where it cannot be evaluated.
     pub fn value(&mut self, p: &M::Params, points: &[SwitchingPoint]) -> f64 {
         match self.condition {
+            Condition::Eigen(_) if self.half > 0 => {
+                mirrored_half_map::<M>(p, &self.steps, self.half, self.shift, points)
+                    .ok()
+                    .map_or(f64::NAN, |rdg| {
+                        eigen_value(TransitionKind::PeriodDoubling, &rdg)
+                    })
+            }
             Condition::Eigen(kind) => monodromy::<M>(p, &self.steps, self.shift, points)
                 .ok()
                 .map_or(f64::NAN, |dp| eigen_value(kind, &dp)),
@@ -398,6 +434,8 @@ impl<M: Model> Evaluator<M> {
     pub fn with(&self, condition: Condition) -> Self {
         let mut e = self.clone();
         e.condition = condition;
+        // The second condition's test function is the whole cycle's.
+        e.half = 0;
         e
     }
 }

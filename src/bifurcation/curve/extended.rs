@@ -44,6 +44,7 @@ use super::{Condition, Plane};
 
 mod mirror;
 mod pair;
+mod symmetric;
 
 /// The equations hold to rounding when each residual is below this times
 /// its row's largest derivative ([`Extended::correct`]). Measured: at the
@@ -247,7 +248,9 @@ impl<M: Model> Extended<M> {
         let g = self.condition(x);
         let p = self.params(x);
         let eval = &self.eval;
-        let scale = condition_scale::<M>(&p, eval.condition, eval.structure.as_ref(), &self.pts);
+        let scale = self.half_scale(&p).unwrap_or_else(|| {
+            condition_scale::<M>(&p, eval.condition, eval.structure.as_ref(), &self.pts)
+        });
         let r = (g / scale).abs();
         if r.is_nan() {
             f64::INFINITY
@@ -362,6 +365,10 @@ impl<M: Model> Extended<M> {
             pl[axis][1].set(idx, x[n - 2 + axis] - h);
         }
         for k in 0..m {
+            if self.restricted() && k >= self.eval.half {
+                self.mirror_rows(x, k);
+                continue;
+            }
             let (a, b) = self.ends(x, k);
             let step = self.eval.steps[k];
             let ev = M::mapping(&p, step, a.x, a.phase, b.x, b.phase);

@@ -161,7 +161,9 @@ pub fn system<M: Model>(
     let domain = rest_domain::<M>(&p, condition)?;
     let eval = Evaluator::<M>::new(condition, structure, &p, domain).map_err(CurveError::Start)?;
     let length = PeriodicSolver::<M>::length_scale(&p, &point.points);
-    Ok(Extended::new(*base, *plane, length, eval))
+    let mut sys = Extended::new(*base, *plane, length, eval);
+    sys.restrict_to_symmetric(&unknowns(point));
+    Ok(sys)
 }
 
 fn check_options(opts: &CurveOptions) -> Result<(), CurveError> {
@@ -258,16 +260,18 @@ pub fn trace<M: Model>(
     let mut corrected = None;
     let mut why = String::new();
     // On a symmetric motion the mirror of the curve's own tangential
-    // arrival is pinned (the regular form of its double root); should the
-    // start not solve so, it is tried without.
-    let pins: &[bool] = if tracer.sys.pin_tangent_arrivals(&x) > 0 {
+    // arrival is pinned (the regular form of its double root), and a
+    // symmetric motion's pitchfork is solved on the symmetric motions alone
+    // (`system`); should the start not solve so, it is tried without.
+    let regular: &[bool] = if tracer.sys.pin_tangent_arrivals(&x) > 0 || tracer.sys.restricted() {
         &[true, false]
     } else {
         &[false]
     };
-    for (&pin, axis) in pins.iter().flat_map(|pin| [(pin, 1), (pin, 0)]) {
-        if !pin {
+    for (&special, axis) in regular.iter().flat_map(|r| [(r, 1), (r, 0)]) {
+        if !special {
             tracer.sys.unpin();
+            tracer.sys.unrestrict();
         }
         tracer.sys.axis(axis, &mut border);
         let mut trial = x.clone();

@@ -3,7 +3,7 @@
 //! passes there, and more lines where a curve must be missing.
 //!
 //! The lines, in order: the seed lines and the `--at` lines; `spread` horizontal and `spread`
-//! vertical lines evenly spaced; then, for every transition on any line
+//! vertical lines evenly spaced, and with `edges` the box's four edges; then, for every transition on any line
 //! that no traced curve passes (its trace failed, or it began nowhere a
 //! traced curve reaches), a line through it across its own line and one
 //! beside it (at most `max_missing`); then, between two neighbouring
@@ -214,7 +214,12 @@ impl<'a, M: Model> Cover<'a, M> {
         })
     }
 
-    /// The evenly spread lines.
+    /// The evenly spread lines, then (with `edges`) the box's four edges.
+    /// Every curve that leaves the box crosses an edge: a sweep along the
+    /// edges finds those whose transition it resolves there, wherever the
+    /// inner lines pass them by. On Shaw's box (`coulomb`, `V = 0`) the top
+    /// edge crosses a second symmetric motion's pitchfork that no inner
+    /// line meets.
     pub fn spread(&mut self) {
         let n = self.settings.spread;
         let [xl, xh] = self.plane.x_range;
@@ -223,6 +228,11 @@ impl<'a, M: Model> Cover<'a, M> {
             let f = k as f64 / (n + 1) as f64;
             self.extra(Line::Y(yl + f * (yh - yl)));
             self.extra(Line::X(xl + f * (xh - xl)));
+        }
+        if self.settings.edges {
+            for line in [Line::Y(yl), Line::Y(yh), Line::X(xl), Line::X(xh)] {
+                self.extra(line);
+            }
         }
     }
 

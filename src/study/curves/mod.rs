@@ -191,8 +191,15 @@ pub struct CurvesSettings {
     /// Grid values of each seed line's sweep.
     pub count: usize,
     /// Extra seed lines spread over the box, this many each way (`n`
-    /// horizontal lines at `y = lo + k (hi − lo) / (n + 1)`, and vertical ones).
+    /// horizontal lines at `y = lo + k (hi − lo) / (n + 1)`, and vertical
+    /// ones).
     pub spread: usize,
+    /// Sweep the box's four edges too: every curve that leaves the box
+    /// crosses one. Off by default: measured with
+    /// `EXTRA=--edges bash benches/curves-runs.sh` (README, "Regime maps"),
+    /// it finds 29 curves on Shaw's box where 20 are found without, and
+    /// 70 on Fig. 11's where 39 are, at three times the run time there.
+    pub edges: bool,
     /// At most this many lines added near transitions no traced curve passes.
     pub max_missing: usize,
     /// At most this many lines added between neighbouring lines whose
@@ -218,6 +225,7 @@ impl Default for CurvesSettings {
         Self {
             count: 100,
             spread: 3,
+            edges: false,
             max_missing: 6,
             max_refine: 4,
             probes: 0,

@@ -69,12 +69,16 @@ impl<M: Model> Extended<M> {
     /// `k + m/2` is point `k` mirrored (`−x`, within [`MIRRORED`] of `L`)
     /// half a cycle later (`N π`, within [`MIRRORED`] radians).
     fn mirrored(&self, x: &[f64]) -> bool {
+        self.mirrored_within(x, MIRRORED)
+    }
+
+    /// [`Self::mirrored`] within `tol` (of `L`, and radians).
+    pub(super) fn mirrored_within(&self, x: &[f64], tol: f64) -> bool {
         let half = self.m / 2;
         let shift = 0.5 * self.eval.shift;
         (0..half).all(|k| {
             let (a, b) = (2 * k, 2 * (k + half));
-            (x[a] + x[b]).abs() <= MIRRORED * self.length
-                && (x[b + 1] - x[a + 1] - shift).abs() <= MIRRORED
+            (x[a] + x[b]).abs() <= tol * self.length && (x[b + 1] - x[a + 1] - shift).abs() <= tol
         })
     }
 
@@ -91,20 +95,27 @@ impl<M: Model> Extended<M> {
     /// The largest dropped velocity equation `f2` of a pinned arrival at
     /// `x`, over its row's largest derivative (0 with none pinned).
     fn dropped_residual(&self, x: &[f64]) -> f64 {
+        self.pins
+            .iter()
+            .fold(0.0f64, |worst, &k| worst.max(self.row_residual(x, k, 1)))
+    }
+
+    /// Mapping `k`'s equation `row` at `x` over its row's largest
+    /// derivative (NaN counts as infinite).
+    pub(super) fn row_residual(&self, x: &[f64], k: usize, row: usize) -> f64 {
         let p = self.params(x);
-        self.pins.iter().fold(0.0f64, |worst, &k| {
-            let (a, b) = self.ends(x, k);
-            let ev = M::mapping(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
-            let scale = (0..2).fold(0.0f64, |s, c| {
-                s.max(ev.d_prev[(1, c)].abs()).max(ev.d_next[(1, c)].abs())
-            });
-            let r = (ev.residual[1] / scale).abs();
-            if r.is_nan() {
-                f64::INFINITY
-            } else {
-                worst.max(r)
-            }
-        })
+        let (a, b) = self.ends(x, k);
+        let ev = M::mapping(&p, self.eval.steps[k], a.x, a.phase, b.x, b.phase);
+        let scale = (0..2).fold(0.0f64, |s, c| {
+            s.max(ev.d_prev[(row, c)].abs())
+                .max(ev.d_next[(row, c)].abs())
+        });
+        let r = (ev.residual[row] / scale).abs();
+        if r.is_nan() {
+            f64::INFINITY
+        } else {
+            r
+        }
     }
 
     /// Row `2k + 1` (segment `k`'s velocity equation) replaced by its
@@ -138,11 +149,19 @@ impl<M: Model> Extended<M> {
     }
 
     /// A converged correction stands only if the velocity equations
-    /// dropped for pinned arrivals ([`Self::pin_tangent_arrivals`]) hold
-    /// to [`HOLDS_TO`] of their rows' largest derivatives.
+    /// dropped for pinned arrivals ([`Self::pin_tangent_arrivals`]), and
+    /// the second half's mapping equations of a system restricted to the
+    /// symmetric motions ([`Self::restrict_to_symmetric`]), hold to
+    /// [`HOLDS_TO`] of their rows' largest derivatives.
     pub(super) fn check_dropped(&self, x: &[f64], c: Correction) -> Correction {
         if !matches!(c, Correction::Converged { .. }) {
             return c;
+        }
+        let r = self.mirror_residual(x);
+        if r > HOLDS_TO {
+            return Correction::Failed(format!(
+                "the motion's second half is not its first mirrored (its mapping equations hold to {r:.1e} only)"
+            ));
         }
         let r = self.dropped_residual(x);
         if r <= HOLDS_TO {
