@@ -33,47 +33,23 @@ mod common;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
-use common::cycle::worst_residual;
+use common::cycle::{other_ends, worst_residual};
 use stickslip::bifurcation::curve::{
-    crossings, trace, Condition, Curve, CurveEndReason, CurveOptions, CurvePoint, Line, Plane,
+    crossings, trace, Condition, Curve, CurveOptions, CurvePoint, Line,
 };
 use stickslip::bifurcation::TransitionKind;
-use stickslip::models::coulomb::{Coulomb, Params};
+use stickslip::models::coulomb::Coulomb;
 use stickslip::orbit::periodic::{monodromy, NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
+use stickslip::Model;
 
 const MOTION: &str = "P_{0_11 1_11 0_11 2_11}";
 
 /// Ample: the curve takes about 25 points.
 const MAX_POINTS: usize = 300;
 
-fn base() -> Params {
-    Params {
-        V: 0.0,
-        d: 0.0,
-        mus: 0.45,
-        muk: 0.3,
-        ..Default::default()
-    }
-}
-
-fn plane() -> Plane {
-    Plane {
-        x: Params::index_of("W").unwrap(),
-        y: Params::index_of("Q0").unwrap(),
-        x_range: [0.3, 1.2],
-        y_range: [0.5, 2.0],
-    }
-}
-
-fn at(x: f64, y: f64) -> Params {
-    let (mut p, plane) = (base(), plane());
-    p.set(plane.x, x);
-    p.set(plane.y, y);
-    p
-}
+use common::shaw::{at, params as base, plane};
 
 fn structure() -> Structure {
     Structure::parse(Coulomb::INFO, MOTION, 1).expect("a structure")
@@ -130,18 +106,8 @@ fn the_curve_is_traced_and_ends_at_the_box_or_a_codim2_point() {
         c.points.len()
     );
     assert_eq!(c.ends.len(), 2, "a closed curve?");
-    for e in &c.ends {
-        assert!(
-            matches!(
-                e.reason,
-                CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
-            ),
-            "ends with {:?} at W = {}, Q0 = {}",
-            e.reason,
-            e.at.x,
-            e.at.y
-        );
-    }
+    let other = other_ends::<Coulomb>(std::slice::from_ref(c));
+    assert!(other.is_empty(), "{other:?}");
     // It spans the box's height range it crosses, not a stub.
     let (lo, hi) = c
         .points

@@ -37,48 +37,23 @@ mod common;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
-use common::cycle::{held, worst_residual};
+use common::cycle::{held, other_ends, worst_residual};
 use stickslip::bifurcation::curve::{
     crossings, trace, Condition, Curve, CurveEnd, CurveEndReason, CurveOptions, CurvePoint, Line,
-    Plane,
 };
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
-use stickslip::models::coulomb::{Coulomb, Params};
+use stickslip::models::coulomb::Coulomb;
 use stickslip::orbit::admissible::{conditions, ViolationKind};
 use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;
-use stickslip::{Model, ParamSet};
+use stickslip::Model;
 
 const SIGMA1: usize = 0;
 
 /// Ample for curves of 13 and 17 points; the creeping ones reached thousands.
 const MAX_POINTS: usize = 300;
 
-fn base() -> Params {
-    Params {
-        V: 0.0,
-        d: 0.0,
-        mus: 0.45,
-        muk: 0.3,
-        ..Default::default()
-    }
-}
-
-fn plane() -> Plane {
-    Plane {
-        x: Params::index_of("W").unwrap(),
-        y: Params::index_of("Q0").unwrap(),
-        x_range: [0.3, 1.2],
-        y_range: [0.5, 2.0],
-    }
-}
-
-fn at(x: f64, y: f64) -> Params {
-    let (mut p, plane) = (base(), plane());
-    p.set(plane.x, x);
-    p.set(plane.y, y);
-    p
-}
+use common::shaw::{at, params as base, plane};
 
 fn point(x: f64, y: f64, pts: &[(f64, f64)]) -> CurvePoint {
     CurvePoint {
@@ -211,20 +186,8 @@ fn lower_end(c: &Curve) -> &CurveEnd {
 fn the_curves_end_at_the_box_or_a_codim2_point_without_creeping() {
     for t in curves() {
         assert_eq!(t.curve.ends.len(), 2, "{}: a closed curve?", t.name);
-        for e in &t.curve.ends {
-            assert!(
-                matches!(
-                    e.reason,
-                    CurveEndReason::BoxEdge | CurveEndReason::Codim2 { .. }
-                ),
-                "{}: ends with {:?} at W = {}, Q0 = {} after {} points",
-                t.name,
-                e.reason,
-                e.at.x,
-                e.at.y,
-                t.curve.points.len()
-            );
-        }
+        let other = other_ends::<Coulomb>(std::slice::from_ref(&t.curve));
+        assert!(other.is_empty(), "{}: {other:?}", t.name);
         assert!(
             t.curve.points.len() < MAX_POINTS,
             "{}: {} points",

@@ -8,22 +8,16 @@
 //! run must list every transition the first traced a curve from, on the
 //! seed line, with the start's error.
 
+mod common;
+
 use stickslip::bifurcation::curve::Line;
-use stickslip::models::coulomb::{Coulomb, Params};
+use stickslip::models::coulomb::Coulomb;
 use stickslip::output::curves_table;
 use stickslip::study::curves::{curves_with, CurveSet, CurvesOptions, CurvesSettings};
 
 const SEED: f64 = 1.8;
 
-fn base() -> Params {
-    Params {
-        V: 0.0,
-        d: 0.0,
-        mus: 0.45,
-        muk: 0.3,
-        ..Default::default()
-    }
-}
+use common::shaw::params as base;
 
 fn run(tolerance: Option<f64>) -> CurveSet {
     let opts = CurvesOptions {

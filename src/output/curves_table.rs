@@ -138,11 +138,15 @@ fn end_text(set: &CurveSet, end: &Option<EndSummary>) -> String {
     s
 }
 
-fn curve_text(out: &mut String, set: &CurveSet, i: usize, c: &CurveSummary) {
-    let boundary = c
-        .boundary
+/// `" on NAME"` for a curve on a boundary, empty otherwise.
+fn on_boundary(boundary: &Option<String>) -> String {
+    boundary
         .as_deref()
-        .map_or(String::new(), |b| format!(" on {b}"));
+        .map_or(String::new(), |b| format!(" on {b}"))
+}
+
+fn curve_text(out: &mut String, set: &CurveSet, i: usize, c: &CurveSummary) {
+    let boundary = on_boundary(&c.boundary);
     let _ = writeln!(
         out,
         "curve {i}: {}{boundary} of {}",
@@ -205,10 +209,7 @@ pub fn text(set: &CurveSet, settings: &str) -> String {
             set.failed_starts.len()
         );
         for f in &set.failed_starts {
-            let boundary = f
-                .boundary
-                .as_deref()
-                .map_or(String::new(), |b| format!(" on {b}"));
+            let boundary = on_boundary(&f.boundary);
             let _ = writeln!(
                 out,
                 "  {}{boundary} of {} at {} = {:.10}, {} = {:.10}: {}",

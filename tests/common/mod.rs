@@ -17,6 +17,7 @@
 //! * `reference`: the reference periodic motions of `../shared/reference/`.
 //! * `resimulate`: a periodic motion re-simulated by the library from its
 //!   first switching point.
+//! * `shaw`: Shaw's oscillator and the box the curves tests run on it.
 //! * `cycle`: the mapping equations of a cycle of mappings at its switching
 //!   points (a motion built by hand).
 #![allow(dead_code)]
@@ -29,6 +30,7 @@ pub mod graze;
 pub mod reference;
 pub mod resimulate;
 pub mod roots;
+pub mod shaw;
 pub mod taylor;
 
 use rand::rngs::StdRng;
