@@ -330,3 +330,88 @@ fn the_crossing_with_a_line_is_solved_exactly() {
         assert!(asym <= 1e-9, "{}: asymmetry {asym:e}", t.name);
     }
 }
+
+/// The grazing curve of Shaw's undamped pure slip `P_{1_11 2_11}` runs
+/// towards W = 1/2, where the half cycle `π / W` lasts one free period
+/// `2π` and the motion stops being isolated: its curve ends there as a
+/// failure that says the motion is degenerate, not at a codimension-two
+/// point it never reaches.
+/// Checked independently: the mapping equations' Jacobian in the switching
+/// points, by central differences of the generated residuals, has a
+/// singular value below 1e-4 of its largest at the end and above 0.1 at
+/// the start.
+#[test]
+fn the_pure_slip_grazing_curve_ends_where_the_motion_is_not_isolated() {
+    use nalgebra::DMatrix;
+    let structure = Structure::parse(Coulomb::INFO, "P_{1_11 2_11}", 1).expect("a structure");
+    let start = point(
+        0.45023211,
+        1.23980328,
+        &[
+            (6.127468912335644, 1.5362050131769711),
+            (9.269061565925313, -1.5362050131769698),
+        ],
+    );
+    let grazing = Condition::Margin {
+        kind: ViolationKind::Interior,
+        segment: 1,
+        boundary: Some(SIGMA1),
+    };
+    let opts = CurveOptions {
+        max_points: MAX_POINTS,
+        ..CurveOptions::default()
+    };
+    let curve = trace::<Coulomb>(&base(), &plane(), Some(&structure), &start, grazing, &opts)
+        .expect("the curve");
+    // The mapping equations' conditioning at `q`, by central differences.
+    let conditioning = |q: &CurvePoint| {
+        let p = at(q.x, q.y);
+        let steps = structure.steps();
+        let f = |pts: &[SwitchingPoint]| {
+            let mut out = [0.0; 4];
+            for k in 0..2 {
+                let (a, b) = (pts[k], pts[(k + 1) % 2]);
+                let shift = if k == 1 { 2.0 * PI } else { 0.0 };
+                let r = Coulomb::residual(&p, steps[k], a.x, a.phase, b.x, b.phase + shift);
+                out[2 * k] = r[0];
+                out[2 * k + 1] = r[1];
+            }
+            out
+        };
+        let h = 1e-6;
+        let jac = DMatrix::from_fn(4, 4, |r, c| {
+            let (mut hi, mut lo) = (q.points.clone(), q.points.clone());
+            let (k, phase) = (c / 2, c % 2 == 1);
+            let bump = |v: &mut SwitchingPoint, d: f64| {
+                if phase {
+                    v.phase += d
+                } else {
+                    v.x += d
+                }
+            };
+            bump(&mut hi[k], h);
+            bump(&mut lo[k], -h);
+            (f(&hi)[r] - f(&lo)[r]) / (2.0 * h)
+        });
+        let sv = jac.singular_values();
+        sv.min() / sv.max()
+    };
+    let ends: Vec<_> = curve
+        .ends
+        .iter()
+        .filter(|e| !matches!(e.reason, CurveEndReason::BoxEdge))
+        .collect();
+    assert_eq!(ends.len(), 1, "{:?}", curve.ends);
+    let e = ends[0];
+    let CurveEndReason::NewtonFailure(why) = &e.reason else {
+        panic!("ends with {:?} at W = {}", e.reason, e.at.x);
+    };
+    assert!(why.contains("degenerate"), "{why}");
+    assert!((e.at.x - 0.5).abs() < 1e-3, "ends at W = {}", e.at.x);
+    let c_end = conditioning(&e.at);
+    let c_start = conditioning(&start);
+    assert!(
+        c_end < 1e-4 && c_start > 0.1,
+        "conditioning {c_start:e} at the start, {c_end:e} at the end"
+    );
+}
