@@ -266,7 +266,8 @@ impl<M: Model> Tracer<'_, M> {
 
     /// The smallest singular value of the motion's mapping equations'
     /// Jacobian in the switching points and both parameters at `prev` over
-    /// its largest (`None` where it cannot be assembled). Near zero where
+    /// its largest (`None` for the no-motion regime or where it cannot be
+    /// assembled). Near zero where
     /// the motion is degenerate: Shaw's undamped pure slip
     /// `P_{1_11 2_11}` as W nears 1/2, where the half cycle lasts one free
     /// period and the motion stops being isolated (in the switching points
@@ -274,6 +275,10 @@ impl<M: Model> Tracer<'_, M> {
     /// segment that shrinks to nothing.
     fn motion_conditioning(&mut self, prev: &Sample) -> Option<f64> {
         let k = self.sys.len();
+        // The no-motion regime has no switching points.
+        if k <= 2 {
+            return None;
+        }
         let jac = self.sys.jacobian(&prev.x).ok()?;
         let f = nalgebra::DMatrix::from_fn(k - 2, k, |r, c| jac[r * k + c]);
         let sv = f.singular_values();
