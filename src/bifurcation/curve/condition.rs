@@ -56,12 +56,12 @@ pub(super) fn mirrored_half_map<M: Model>(
     shift: f64,
     points: &[SwitchingPoint],
 ) -> Result<Matrix2<f64>, usize> {
-    let mut dg = Matrix2::identity();
-    for (k, (&step, a)) in steps.iter().zip(points).take(half).enumerate() {
-        let b = crate::orbit::periodic::arrival(points, k, shift);
-        let e = M::mapping(p, step, a.x, a.phase, b.x, b.phase);
-        dg = e.local_jacobian().ok_or(k)? * dg;
+    // The first half's points and the one it arrives at: `monodromy`
+    // takes each arrival from the next point.
+    if half > steps.len() || half >= points.len() {
+        return Err(0);
     }
+    let dg = monodromy::<M>(p, &steps[..half], shift, &points[..=half])?;
     Ok(Matrix2::new(1.0, 0.0, 0.0, -1.0) * dg)
 }
 
