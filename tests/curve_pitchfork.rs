@@ -35,7 +35,8 @@ use std::sync::OnceLock;
 
 use common::cycle::{other_ends, worst_residual};
 use stickslip::bifurcation::curve::{
-    crossings, trace, Condition, Curve, CurveOptions, CurvePoint, Line,
+    codim2_residual, crossings, trace, Condition, Curve, CurveEndReason, CurveOptions, CurvePoint,
+    Line,
 };
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::coulomb::Coulomb;
@@ -116,6 +117,34 @@ fn the_curve_is_traced_and_ends_at_the_box_or_a_codim2_point() {
             (a.min(q.y), b.max(q.y))
         });
     assert!(hi - lo > 0.5, "Q0 spans {lo}..{hi} only");
+}
+
+/// The codimension-two end (the pitchfork meeting the passable onset near
+/// W = 0.46694, Q0 = 0.99917) is solved with both conditions, not left
+/// where the bracket on the passable onset closed: its passable onset,
+/// from the admissibility walk (`codim2_residual`), holds to rounding.
+/// Measured 2.0e-17 of its scale; 3.2e-12 while curves of an eigenvalue
+/// condition ended at the bracket's last trial.
+#[test]
+fn the_codim2_end_holds_both_conditions_to_rounding() {
+    let c = curve();
+    let ends: Vec<_> = c
+        .ends
+        .iter()
+        .filter(|e| matches!(e.reason, CurveEndReason::Codim2 { .. }))
+        .collect();
+    assert!(!ends.is_empty(), "no codimension-two end: {:?}", c.ends);
+    for e in ends {
+        let v = codim2_residual::<Coulomb>(&base(), &plane(), c, e).expect("a residual");
+        assert!(
+            v <= 1e-14,
+            "the end at W = {}, Q0 = {}: {v:e}",
+            e.at.x,
+            e.at.y
+        );
+        // And it is a point of the curve: a unit eigenvalue.
+        assert!(unit_eigen(&e.at).abs() <= 1e-9, "{:e}", unit_eigen(&e.at));
+    }
 }
 
 #[test]

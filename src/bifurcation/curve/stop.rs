@@ -134,7 +134,7 @@ impl<M: Model> Tracer<'_, M> {
             });
         let reason = CurveEndReason::Codim2 { kind, boundary };
         let bound = PAIR_REACH * reach_plane + CODIM2_REACH * self.opts.min_step;
-        if let Some(at) = self.pair_point(prev, bound) {
+        if let Some(at) = self.pair_point(prev, prev.worst, bound) {
             return Some((reason, at));
         }
         // Towards a tangential end of the grazed segment the margin that
@@ -325,9 +325,10 @@ impl<M: Model> Tracer<'_, M> {
         })
     }
 
-    /// The point where the curve's condition and the smallest other
-    /// margin at `prev` (a margin of the motion) vanish together, solved
-    /// from `prev` with both parameters free
+    /// The point where the curve's condition (a margin, or an eigenvalue
+    /// test function) and the margin of the motion `first` (the smallest
+    /// other margin at `prev`, or the condition violated just beyond it)
+    /// vanish together, solved from `prev` with both parameters free
     /// ([`Extended::correct_pair`](super::extended::Extended::correct_pair)), if it lies ahead of `prev`, within
     /// `bound` of it in the plane (each parameter over its span), in the
     /// box, and every other condition holds there (to [`SAME_EVENT`]: the
@@ -344,8 +345,13 @@ impl<M: Model> Tracer<'_, M> {
     /// period-adding cascade vanishing together near its accumulation,
     /// whose steep margins make each `-3e-6` at the other's point,
     /// `1.5e-10` away in `Q0 = 46.7`.
-    pub(super) fn pair_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
-        let mut id = prev.worst?;
+    pub(super) fn pair_point(
+        &mut self,
+        prev: &Sample,
+        first: Option<ConditionId>,
+        bound: f64,
+    ) -> Option<Sample> {
+        let mut id = first?;
         let tol = self.opts.location_tolerance;
         let n = prev.x.len();
         let mut last: Option<Sample> = None;
@@ -465,10 +471,24 @@ impl<M: Model> Tracer<'_, M> {
     }
 
     /// [`Self::pair_point`] with the second condition `id`, whatever the
-    /// other margins there.
+    /// other margins there. On an eigenvalue curve too: its end at a margin
+    /// was the bracket's last trial before, which holds that margin only as
+    /// well as the bracket closed on it (Shaw's pitchfork meeting the
+    /// passable onset: 3.1e-12 of its scale; solved, 2.0e-17). Where the
+    /// test function is not smooth at the point the solve does not
+    /// converge and the trial stays the end: the fold and period-doubling
+    /// ends at passable onsets of `stribeck8` and `stribeck::pl4` (static
+    /// and sliding friction agree at the belt's speed there, so the
+    /// arrival before the stick turns tangential as its onset's margin
+    /// vanishes); on `stribeck8` W=0.5:3 × Q0=1:12 the period-doubling test
+    /// function of the end near W = 1.7440 jumps from 0 to -6.2 over
+    /// 1.2e-4 in W, and its product with the onset's margin still has a
+    /// double zero there (Newton halves the margin each step).
     fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {
-        if !matches!(self.sys.eval.condition, Condition::Margin { .. })
-            || self.sys.eval.structure.is_none()
+        if !matches!(
+            self.sys.eval.condition,
+            Condition::Margin { .. } | Condition::Eigen(_)
+        ) || self.sys.eval.structure.is_none()
             || id.0 == ViolationKind::Other
         {
             return None;

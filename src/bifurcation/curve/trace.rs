@@ -373,7 +373,19 @@ impl<M: Model> Tracer<'_, M> {
                 // second condition only as well as the bracket closed on
                 // it, where that margin is steep (a stick onset of a long
                 // motion on `coulomb` with `V = 0`: 6e-8, 2e-8 of its scale).
-                self.pair_point(&good, bound).unwrap_or(good)
+                // With the condition that names the end first (violated
+                // just beyond: on `stribeck8` W=0.5:3 × Q0=1:12 the smallest
+                // margin at the trial is a stick's duration, 6e-4, while
+                // the stick onset beyond is what vanishes), else with the
+                // smallest margin at the trial.
+                let worst = good.worst;
+                self.pair_point(&good, named.or(worst), bound)
+                    .or_else(|| {
+                        (named.is_some() && named != worst)
+                            .then(|| self.pair_point(&good, worst, bound))
+                            .flatten()
+                    })
+                    .unwrap_or(good)
             };
             let reason = CurveEndReason::Codim2 { kind, boundary };
             if !(turns_real && good.disc >= 0.0) {
