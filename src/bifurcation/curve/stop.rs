@@ -481,7 +481,7 @@ impl<M: Model> Tracer<'_, M> {
     /// and sliding friction agree at the belt's speed there, so the
     /// arrival before the stick turns tangential as its onset's margin
     /// vanishes); on `stribeck8` W=0.5:3 × Q0=1:12 the period-doubling test
-    /// function of the end near W = 1.7440 jumps from 0 to -6.2 over
+    /// function of the end near W = 1.7440 jumps from 0 to 6.2 over
     /// 1.2e-4 in W, and its product with the onset's margin still has a
     /// double zero there (Newton halves the margin each step).
     fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {

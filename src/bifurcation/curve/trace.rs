@@ -374,10 +374,14 @@ impl<M: Model> Tracer<'_, M> {
                 // it, where that margin is steep (a stick onset of a long
                 // motion on `coulomb` with `V = 0`: 6e-8, 2e-8 of its scale).
                 // With the condition that names the end first (violated
-                // just beyond: on `stribeck8` W=0.5:3 × Q0=1:12 the smallest
-                // margin at the trial is a stick's duration, 6e-4, while
-                // the stick onset beyond is what vanishes), else with the
-                // smallest margin at the trial.
+                // just beyond the bracket), else with the smallest margin
+                // at the trial: the two differ where the bracket closes on
+                // failed trials short of the point (on `stribeck8`
+                // W=0.5:3 × Q0=1:12 a period-doubling curve's trial holds a
+                // stick's duration at 6e-4 while the stick onset beyond is
+                // what vanishes; on the paper model's cascade window,
+                // `tests/curve_cascade.rs`, the `^7` grazing curve's end
+                // held its passable onset to 9.4e-6 before, 3.3e-16 now).
                 let worst = good.worst;
                 self.pair_point(&good, named.or(worst), bound)
                     .or_else(|| {
