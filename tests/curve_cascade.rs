@@ -36,7 +36,11 @@
 //! curves run found there, corrected first), so the test costs three
 //! curves, not the window's sweeps.
 
+mod common;
+
 use std::sync::OnceLock;
+
+use common::cycle::codim2_residuals;
 
 use stickslip::bifurcation::curve::{
     condition_value, trace, Condition, Curve, CurveEndReason, CurveOptions, CurvePoint, Plane,
@@ -534,7 +538,6 @@ fn every_curve_point_satisfies_its_condition() {
 /// ends at the cascade's point W = 7.2438890, Q0 = 46.741843 (3.3e-16).
 #[test]
 fn every_codim2_end_of_the_window_holds_both_conditions() {
-    use stickslip::bifurcation::curve::codim2_residual;
     use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
     let base = Params::default();
     let opts = CurvesOptions {
@@ -545,26 +548,18 @@ fn every_codim2_end_of_the_window_holds_both_conditions() {
     };
     let (_, curves) =
         traced::<Paper>(&base, &opts, &CurvesSettings::default()).expect("the run runs");
-    let mut checked = 0;
-    for c in &curves {
-        for e in &c.ends {
-            let CurveEndReason::Codim2 { kind, .. } = e.reason else {
-                continue;
-            };
-            let Some(v) = codim2_residual::<Paper>(&base, &plane(), c, e) else {
-                assert!(c.shrunk_excursion(&e.at), "no second condition of {kind:?}");
-                continue;
-            };
-            assert!(
-                v <= 1e-10,
-                "{:?} of a motion of {:?} mappings: the end at W = {}, Q0 = {} holds its second condition ({kind:?}) only to {v:e} of its scale",
-                c.condition,
-                c.structure.as_ref().map(|s| s.steps().len()),
-                e.at.x,
-                e.at.y
-            );
-            checked += 1;
-        }
+    let ends = codim2_residuals::<Paper>(&base, &plane(), &curves);
+    for &(i, k, v) in &ends {
+        let (c, e) = (&curves[i], &curves[i].ends[k]);
+        assert!(
+            v <= 1e-10,
+            "{:?} of {:?}: the end at W = {}, Q0 = {} ({:?}) holds its second condition only to {v:e} of its scale",
+            c.condition,
+            c.structure.as_ref().map(|s| s.notation(Paper::INFO)),
+            e.at.x,
+            e.at.y,
+            e.reason
+        );
     }
-    assert!(checked >= 20, "only {checked} codimension-two ends");
+    assert!(ends.len() >= 20, "only {} codimension-two ends", ends.len());
 }

@@ -143,7 +143,8 @@ fn the_codim2_end_holds_both_conditions_to_rounding() {
             e.at.y
         );
         // And it is a point of the curve: a unit eigenvalue.
-        assert!(unit_eigen(&e.at).abs() <= 1e-9, "{:e}", unit_eigen(&e.at));
+        let u = unit_eigen(&e.at);
+        assert!(u.abs() <= 1e-9, "{u:e}");
     }
 }
 

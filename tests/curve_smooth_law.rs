@@ -29,7 +29,7 @@ mod common;
 
 use std::sync::OnceLock;
 
-use common::cycle::{fold_ends, held, worst_residual};
+use common::cycle::{codim2_residuals, fold_ends, held, worst_residual};
 use stickslip::bifurcation::curve::{
     codim2_residual, condition_at_transition, condition_scale, condition_value, crossings, trace,
     Condition, Curve, CurveEndReason, CurveError, CurveOptions, CurvePoint, Line, Plane,
@@ -783,32 +783,20 @@ fn shaw_codim2_ends_hold_both_conditions() {
     let (set, curves, base) = shaw();
     let plane = shaw_box().plane::<Coulomb>(base).expect("box");
     let (mut onsets, mut approximate) = (0, 0);
-    for (i, c) in curves.iter().enumerate() {
-        for e in &c.ends {
-            if !matches!(e.reason, CurveEndReason::Codim2 { .. }) {
-                continue;
-            }
-            let Some(v) = codim2_residual::<Coulomb>(base, &plane, c, e) else {
-                // Only an excursion's end (solved on the reduced motion) has none.
-                assert!(
-                    c.shrunk_excursion(&e.at),
-                    "curve {i}: no second condition at {e:?}"
-                );
-                continue;
-            };
-            let onset = c.kind == TransitionKind::StickOnset;
-            let bound = if onset { 1e-9 } else { 5e-8 };
-            approximate += usize::from(v > 1e-9);
-            assert!(
-                v <= bound,
-                "curve {i} ({:?} of {}) end at W = {}, Q0 = {}: second condition to {v:e}",
-                c.kind,
-                set.curves[i].structure,
-                e.at.x,
-                e.at.y
-            );
-            onsets += usize::from(onset);
-        }
+    for (i, k, v) in codim2_residuals::<Coulomb>(base, &plane, curves) {
+        let (c, e) = (&curves[i], &curves[i].ends[k]);
+        let onset = c.kind == TransitionKind::StickOnset;
+        let bound = if onset { 1e-9 } else { 5e-8 };
+        approximate += usize::from(v > 1e-9);
+        assert!(
+            v <= bound,
+            "curve {i} ({:?} of {}) end at W = {}, Q0 = {}: second condition to {v:e}",
+            c.kind,
+            set.curves[i].structure,
+            e.at.x,
+            e.at.y
+        );
+        onsets += usize::from(onset);
     }
     assert!(onsets >= 3, "{onsets} stick-onset codim-2 ends");
     // Only the period-7 grazing end is located by the bracket alone: where
@@ -840,32 +828,21 @@ fn s8box_codim2_ends_of_margin_curves_hold_both_conditions() {
         x_range: [2.3, 2.6],
         y_range: [1.0, 3.0],
     };
+    let curves = s8box();
     let mut checked = 0;
-    for (i, c) in s8box().iter().enumerate() {
+    for (i, k, v) in codim2_residuals::<Stribeck8>(&base, &plane, curves) {
+        let (c, e) = (&curves[i], &curves[i].ends[k]);
         if !matches!(c.condition, Condition::Margin { .. }) {
             continue;
         }
-        for e in &c.ends {
-            if !matches!(e.reason, CurveEndReason::Codim2 { .. }) {
-                continue;
-            }
-            let Some(v) = codim2_residual::<Stribeck8>(&base, &plane, c, e) else {
-                // Only an excursion's end (solved on the reduced motion) has none.
-                assert!(
-                    c.shrunk_excursion(&e.at),
-                    "curve {i}: no second condition at {e:?}"
-                );
-                continue;
-            };
-            assert!(
-                v <= 1e-8,
-                "curve {i} ({:?}) end at W = {}, Q0 = {}: second condition to {v:e}",
-                c.condition,
-                e.at.x,
-                e.at.y
-            );
-            checked += 1;
-        }
+        assert!(
+            v <= 1e-8,
+            "curve {i} ({:?}) end at W = {}, Q0 = {}: second condition to {v:e}",
+            c.condition,
+            e.at.x,
+            e.at.y
+        );
+        checked += 1;
     }
     assert!(checked >= 5, "{checked} ends checked");
 }

@@ -30,11 +30,14 @@
 //! `1_11` takes no time; they are now corrected from the chord of the
 //! bracket (`bifurcation::continuation`).
 
+mod common;
+
 use std::sync::OnceLock;
 
+use common::cycle::codim2_residuals;
+
 use stickslip::bifurcation::curve::{
-    codim2_residual, condition_value, crossings, Condition, Curve, CurveEndReason, CurveOptions,
-    CurvePoint, Line, Plane,
+    condition_value, crossings, Condition, Curve, CurveOptions, CurvePoint, Line, Plane,
 };
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
@@ -399,40 +402,26 @@ const BOUND: f64 = 1e-9;
 #[test]
 fn codim2_ends_satisfy_both_conditions() {
     let r = run();
-    let base = Params::default();
-    let mut checked = 0;
-    for (i, c) in r.curves.iter().enumerate() {
-        for (k, e) in c.ends.iter().enumerate() {
-            let CurveEndReason::Codim2 { kind, .. } = e.reason else {
-                continue;
-            };
-            let Some(v) = codim2_residual::<Paper>(&base, &r.plane, c, e) else {
-                // Only an excursion's end (two equal switching points,
-                // solved on the reduced motion) has none.
-                assert!(
-                    c.shrunk_excursion(&e.at),
-                    "curve {i} end {k}: no second condition of {kind:?}"
-                );
-                continue;
-            };
-            // From the motion's conditions as the admissibility walk
-            // computes them (not the tracer's bookkeeping), and reported so.
-            let summary = if k == 0 {
-                &r.set.curves[i].from
-            } else {
-                &r.set.curves[i].to
-            };
-            assert_eq!(summary.as_ref().and_then(|s| s.residual), Some(v));
-            assert!(
-                v <= BOUND,
-                "curve {i} ({:?} of {:?}) end {k} at W = {}, Q0 = {}: the second condition ({kind:?}) holds only to {v:e} of its scale",
-                c.condition,
-                r.set.curves[i].structure,
-                e.at.x,
-                e.at.y
-            );
-            checked += 1;
-        }
+    let ends = codim2_residuals::<Paper>(&Params::default(), &r.plane, &r.curves);
+    for &(i, k, v) in &ends {
+        let (c, e) = (&r.curves[i], &r.curves[i].ends[k]);
+        // From the motion's conditions as the admissibility walk
+        // computes them (not the tracer's bookkeeping), and reported so.
+        let summary = if k == 0 {
+            &r.set.curves[i].from
+        } else {
+            &r.set.curves[i].to
+        };
+        assert_eq!(summary.as_ref().and_then(|s| s.residual), Some(v));
+        assert!(
+            v <= BOUND,
+            "curve {i} ({:?} of {:?}) end {k} at W = {}, Q0 = {} ({:?}): the second condition holds only to {v:e} of its scale",
+            c.condition,
+            r.set.curves[i].structure,
+            e.at.x,
+            e.at.y,
+            e.reason
+        );
     }
-    assert!(checked >= 40, "only {checked} codimension-two ends");
+    assert!(ends.len() >= 40, "only {} codimension-two ends", ends.len());
 }

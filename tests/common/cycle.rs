@@ -119,3 +119,32 @@ pub fn traced_wq<M: Model>(
     let plane = opts.plane::<M>(base).expect("a valid box");
     (curves, plane)
 }
+
+/// Every codimension-two end of `curves` that has a second condition, with
+/// how well that holds there (`codim2_residual`, from the motion's
+/// conditions as the admissibility walk computes them): `(curve index, end
+/// index, residual)`. An end without one must be where an excursion shrank
+/// to nothing (two equal switching points, solved on the reduced motion).
+pub fn codim2_residuals<M: Model>(
+    base: &M::Params,
+    plane: &stickslip::bifurcation::curve::Plane,
+    curves: &[stickslip::bifurcation::curve::Curve],
+) -> Vec<(usize, usize, f64)> {
+    use stickslip::bifurcation::curve::{codim2_residual, CurveEndReason};
+    let mut out = Vec::new();
+    for (i, c) in curves.iter().enumerate() {
+        for (k, e) in c.ends.iter().enumerate() {
+            if !matches!(e.reason, CurveEndReason::Codim2 { .. }) {
+                continue;
+            }
+            match codim2_residual::<M>(base, plane, c, e) {
+                Some(v) => out.push((i, k, v)),
+                None => assert!(
+                    c.shrunk_excursion(&e.at),
+                    "curve {i} end {k}: no second condition at {e:?}"
+                ),
+            }
+        }
+    }
+    out
+}

@@ -134,7 +134,7 @@ impl<M: Model> Tracer<'_, M> {
             });
         let reason = CurveEndReason::Codim2 { kind, boundary };
         let bound = PAIR_REACH * reach_plane + CODIM2_REACH * self.opts.min_step;
-        if let Some(at) = self.pair_point(prev, prev.worst, bound) {
+        if let Some(at) = prev.worst.and_then(|id| self.pair_point(prev, id, bound)) {
             return Some((reason, at));
         }
         // Towards a tangential end of the grazed segment the margin that
@@ -270,7 +270,7 @@ impl<M: Model> Tracer<'_, M> {
             return None;
         }
         let jac = self.sys.jacobian(&prev.x).ok()?;
-        let f = nalgebra::DMatrix::from_fn(k - 2, k, |r, c| jac[r * k + c]);
+        let f = nalgebra::DMatrix::from_row_slice(k - 2, k, &jac[..(k - 2) * k]);
         let sv = f.singular_values();
         let (lo, hi) = (sv.min(), sv.max());
         (hi > 0.0 && lo.is_finite()).then(|| lo / hi)
@@ -348,10 +348,10 @@ impl<M: Model> Tracer<'_, M> {
     pub(super) fn pair_point(
         &mut self,
         prev: &Sample,
-        first: Option<ConditionId>,
+        first: ConditionId,
         bound: f64,
     ) -> Option<Sample> {
-        let mut id = first?;
+        let mut id = first;
         let tol = self.opts.location_tolerance;
         let n = prev.x.len();
         let mut last: Option<Sample> = None;

@@ -382,13 +382,11 @@ impl<M: Model> Tracer<'_, M> {
                 // what vanishes; on the paper model's cascade window,
                 // `tests/curve_cascade.rs`, the `^7` grazing curve's end
                 // held its passable onset to 9.4e-6 before, 3.3e-16 now).
-                let worst = good.worst;
-                self.pair_point(&good, named.or(worst), bound)
-                    .or_else(|| {
-                        (named.is_some() && named != worst)
-                            .then(|| self.pair_point(&good, worst, bound))
-                            .flatten()
-                    })
+                let worst = good.worst.filter(|w| Some(*w) != named);
+                [named, worst]
+                    .into_iter()
+                    .flatten()
+                    .find_map(|id| self.pair_point(&good, id, bound))
                     .unwrap_or(good)
             };
             let reason = CurveEndReason::Codim2 { kind, boundary };
