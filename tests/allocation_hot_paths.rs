@@ -13,7 +13,9 @@ use common::counting::{allocations, Counting};
 use common::reference::references;
 use stickslip::dynamics::simulate::{Location, SimOptions, Simulator};
 use stickslip::models::paper::{Paper, Params};
-use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use stickslip::orbit::periodic::{
+    monodromy_spectral, NewtonOptions, PeriodicSolver, SwitchingPoint,
+};
 use stickslip::orbit::structure::Structure;
 use stickslip::Model;
 
@@ -82,6 +84,11 @@ fn newton_direction_and_step_allocate_nothing() {
         let (n, dp) = allocations(|| solver.poincare_jacobian(&p, &points));
         assert!(dp.is_ok());
         assert_eq!(n, 0, "{text}: poincare_jacobian allocated {n} times");
+        let shift = std::f64::consts::TAU * f64::from(case.periods);
+        let steps = solver.structure().steps();
+        let (n, dp) = allocations(|| monodromy_spectral::<Paper>(&p, steps, shift, &points));
+        assert!(dp.is_ok());
+        assert_eq!(n, 0, "{text}: monodromy_spectral allocated {n} times");
         // The error path too: a degenerate guess (all points equal) is singular
         // or not finite, and says so without allocating.
         let flat = vec![points[0]; points.len()];

@@ -27,7 +27,7 @@
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 use crate::model::{Model, ParamSet};
-use crate::orbit::periodic::{arrival, SwitchingPoint};
+use crate::orbit::periodic::{arrival, monodromy, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 /// A point of the extended space: switching points and the parameter.
@@ -435,12 +435,6 @@ impl<M: Model> Bordered<M> {
     /// the mapping whose arrival is singular.
     pub fn poincare_jacobian(&self, x: &State) -> Result<Matrix2<f64>, usize> {
         let p = self.params(x.value);
-        let mut dp = Matrix2::identity();
-        for k in 0..x.points.len() {
-            let (a, b) = self.ends(&x.points, k);
-            let e = M::mapping(&p, self.structure.steps()[k], a.x, a.phase, b.x, b.phase);
-            dp = e.local_jacobian().ok_or(k)? * dp;
-        }
-        Ok(dp)
+        monodromy::<M>(&p, self.structure.steps(), self.shift, &x.points)
     }
 }

@@ -91,6 +91,37 @@ impl MappingEval {
         // Rows come out ordered like the unknowns of `next`, (Wt, x).
         dp.iter().all(|v| v.is_finite()).then_some(dp)
     }
+
+    /// `DP_stick · DP_flow` of a flow mapping (`self`, Eq. 38) arriving at
+    /// the stick mapping `stick` (Eq. 37) that follows it, ordered
+    /// `(W t, x)`, free of the arrival's time, or `None` where the stick's
+    /// `∂f/∂next` is singular.
+    ///
+    /// The stick starts where the flow's position equation puts it: its
+    /// start enters only through `x_i − V t_i` (`∂f/∂prev` of Eq. 37 is the
+    /// row `(1, −V/W)` over a zero row), which is `−f1`'s `∂f/∂next` row of
+    /// Eq. 38 wherever the arrival's velocity is the boundary's. So
+    /// `(∂f_stick/∂prev)(∂f_flow/∂next)⁻¹ = (a₀₀ / b₀₀) e₁e₁ᵀ` on the motion,
+    /// and the product is `(∂f_stick/∂next)⁻¹ (a₀₀ / b₀₀) e₁ (∂f1_flow/∂prev)`.
+    /// The factors' own product has `(v − V) / a` in place of the zero (`v`
+    /// the flow's velocity at its arrival, `a` its acceleration): zero on
+    /// the motion, but off it (a Newton iterate, a finite-difference
+    /// stencil) a pole where the arrival turns tangential, as at a passable
+    /// stick onset of a law with `mus g = F0`.
+    pub fn local_jacobian_into_stick(&self, stick: &MappingEval) -> Option<Matrix2<f64>> {
+        let swap = Matrix2::new(0.0, 1.0, 1.0, 0.0);
+        let gain = stick.d_prev[(0, 0)] / self.d_next[(0, 0)];
+        let inv = stick.d_next.try_inverse()?;
+        // (x, W t) columns: e₁ times the flow's position row.
+        let row = Matrix2::new(
+            gain * self.d_prev[(0, 0)],
+            gain * self.d_prev[(0, 1)],
+            0.0,
+            0.0,
+        );
+        let dp = swap * (inv * row) * swap;
+        dp.iter().all(|v| v.is_finite()).then_some(dp)
+    }
 }
 
 /// A generated piecewise-linear model: closed-form flows, mapping residuals
@@ -158,4 +189,51 @@ pub trait Model: FrictionOscillator {
         x1: f64,
         b: Phase,
     ) -> MappingEval;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flow of Eq. 38 arriving at velocity `v` with acceleration `acc`
+    /// (`W = 2`), and the stick of Eq. 37 on the boundary `V = 0.4` after it.
+    fn flow_and_stick(v: f64, acc: f64) -> (MappingEval, MappingEval) {
+        let (w, belt) = (2.0, 0.4);
+        let flow = MappingEval {
+            residual: Vector2::new(0.0, v - belt),
+            d_prev: Matrix2::new(0.7, -1.3, 0.4, 2.1),
+            d_next: Matrix2::new(-1.0, v / w, 0.0, acc / w),
+        };
+        let stick = MappingEval {
+            residual: Vector2::zeros(),
+            d_prev: Matrix2::new(1.0, -belt / w, 0.0, 0.0),
+            d_next: Matrix2::new(-1.0, belt / w, -3.0, 0.9),
+        };
+        (flow, stick)
+    }
+
+    /// On the motion (`v = V`) the pair factor is the product of the two
+    /// local Jacobians; off it, where the arrival is nearly tangential, the
+    /// product has the pole `(v − V) / a` and the pair factor does not.
+    #[test]
+    fn a_flow_into_a_stick_is_its_product_without_the_arrival_pole() {
+        for acc in [0.3, -2.0, 1e-3] {
+            let (flow, stick) = flow_and_stick(0.4, acc);
+            let product =
+                stick.local_jacobian().expect("regular") * flow.local_jacobian().expect("regular");
+            let pair = flow.local_jacobian_into_stick(&stick).expect("regular");
+            let scale = product.abs().max();
+            assert!(
+                (pair - product).abs().max() <= 1e-13 * scale,
+                "a = {acc}: {pair} against {product}"
+            );
+        }
+        let (on, stick) = flow_and_stick(0.4, 0.3);
+        let exact = on.local_jacobian_into_stick(&stick).expect("regular");
+        let (off, _) = flow_and_stick(0.4 + 1e-9, 1e-12);
+        let product =
+            stick.local_jacobian().expect("regular") * off.local_jacobian().expect("regular");
+        assert!(product.abs().max() > 1e2, "the pole: {product}");
+        assert_eq!(off.local_jacobian_into_stick(&stick), Some(exact));
+    }
 }

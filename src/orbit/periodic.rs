@@ -13,7 +13,7 @@
 use nalgebra::{Matrix2, Vector2};
 use serde::Serialize;
 
-use crate::model::{MappingEval, Model, Phase};
+use crate::model::{MappingEval, MappingKind, Model, Phase};
 use crate::orbit::structure::Structure;
 
 /// A switching point: the start of one mapping.
@@ -43,17 +43,75 @@ pub fn arrival(points: &[SwitchingPoint], k: usize, shift: f64) -> SwitchingPoin
 /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` of the cycle of
 /// mappings `steps` at `points`, ordered `(W t, x)` (SPEC §7, Eq. B.1), or
 /// the index of the first mapping whose arrival is tangent to its boundary.
+/// A flow arriving at a stick is taken with the stick, free of its arrival
+/// time ([`MappingEval::local_jacobian_into_stick`]): a tangential arrival
+/// there is no singularity.
 pub fn monodromy<M: Model>(
     p: &M::Params,
     steps: &[usize],
     shift: f64,
     points: &[SwitchingPoint],
 ) -> Result<Matrix2<f64>, usize> {
+    chain::<M>(steps, 0, |k| evaluate::<M>(p, steps, shift, points, k))
+}
+
+/// [`monodromy`] of the cycle taken from its first mapping that is not a
+/// stick: `DP_{σ1} DP_{σm} ⋯ DP_{σ2}` when `σ1` is a stick. Its trace,
+/// determinant and eigenvalues are `DP`'s (`AB` and `BA`), and a flow
+/// arriving at the cycle's first stick is never split from it, so the
+/// test functions of [`crate::bifurcation`] are free of that arrival's
+/// time everywhere. Its eigenvectors are not `DP`'s.
+pub fn monodromy_spectral<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> Result<Matrix2<f64>, usize> {
+    let start = steps.iter().position(|&s| !is_stick::<M>(s)).unwrap_or(0);
+    chain::<M>(steps, start, |k| evaluate::<M>(p, steps, shift, points, k))
+}
+
+fn evaluate<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+    k: usize,
+) -> MappingEval {
+    let (a, b) = (points[k], arrival(points, k, shift));
+    M::mapping(p, steps[k], a.x, a.phase, b.x, b.phase)
+}
+
+fn is_stick<M: Model>(step: usize) -> bool {
+    M::INFO
+        .mappings
+        .get(step)
+        .is_some_and(|m| m.kind == MappingKind::Stick)
+}
+
+/// The product of the local Jacobians of `steps` (mapping `k` evaluated by
+/// `eval(k)`), the `i`-th factor being mapping `(start + i) mod len`, a
+/// flow and the stick after it as one factor. `Err` with the mapping whose
+/// arrival is singular.
+fn chain<M: Model>(
+    steps: &[usize],
+    start: usize,
+    mut eval: impl FnMut(usize) -> MappingEval,
+) -> Result<Matrix2<f64>, usize> {
+    let m = steps.len();
     let mut dp = Matrix2::identity();
-    for (k, (&step, a)) in steps.iter().zip(points).enumerate() {
-        let b = arrival(points, k, shift);
-        let e = M::mapping(p, step, a.x, a.phase, b.x, b.phase);
-        dp = e.local_jacobian().ok_or(k)? * dp;
+    let mut i = 0;
+    while i < m {
+        let k = (start + i) % m;
+        let next = (k + 1) % m;
+        let e = eval(k);
+        if i + 1 < m && is_stick::<M>(steps[next]) && !is_stick::<M>(steps[k]) {
+            dp = e.local_jacobian_into_stick(&eval(next)).ok_or(next)? * dp;
+            i += 2;
+        } else {
+            dp = e.local_jacobian().ok_or(k)? * dp;
+            i += 1;
+        }
     }
     Ok(dp)
 }
@@ -552,15 +610,10 @@ impl<M: Model> PeriodicSolver<M> {
     /// [`poincare_jacobian`](Self::poincare_jacobian) gives at those points,
     /// to the bit. Valid only right after a `solve` that converged.
     pub fn poincare_jacobian_at_solution(&self) -> Result<Matrix2<f64>, SingularStep> {
-        let mut dp = Matrix2::identity();
-        for (k, e) in self.evals.iter().enumerate() {
-            let local = e.local_jacobian().ok_or(SingularStep {
-                segment: Some(k),
-                reason: "the arrival is tangent to the boundary (grazing)",
-            })?;
-            dp = local * dp;
-        }
-        Ok(dp)
+        chain::<M>(self.structure.steps(), 0, |k| self.evals[k]).map_err(|k| SingularStep {
+            segment: Some(k),
+            reason: "the arrival is tangent to the boundary (grazing)",
+        })
     }
 
     /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` at `points`,

@@ -20,6 +20,8 @@ pub struct Reference {
     pub points: Vec<SwitchingPoint>,
     /// Eigenvalues `[re, im]` of the Poincaré-map Jacobian.
     pub eigenvalues: Vec<[f64; 2]>,
+    /// The Poincaré-map Jacobian, ordered `(W t, x)`, by rows.
+    pub dp: [[f64; 2]; 2],
 }
 
 impl Reference {
@@ -89,6 +91,7 @@ pub fn references() -> Vec<Reference> {
                 .iter()
                 .map(|e| [f(&e[0]), f(&e[1])])
                 .collect(),
+            dp: [0, 1].map(|i| [0, 1].map(|j| f(&o["DP_Wtx"][i][j]))),
         })
         .collect()
 }

@@ -28,7 +28,7 @@ use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{MappingKind, Model};
 use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
-use crate::orbit::periodic::{monodromy, SwitchingPoint};
+use crate::orbit::periodic::{monodromy, monodromy_spectral, SwitchingPoint};
 use crate::orbit::steady::steady_response;
 use crate::orbit::structure::Structure;
 
@@ -310,7 +310,7 @@ impl<M: Model> Evaluator<M> {
                         eigen_value(TransitionKind::PeriodDoubling, &rdg)
                     })
             }
-            Condition::Eigen(kind) => monodromy::<M>(p, &self.steps, self.shift, points)
+            Condition::Eigen(kind) => monodromy_spectral::<M>(p, &self.steps, self.shift, points)
                 .ok()
                 .map_or(f64::NAN, |dp| eigen_value(kind, &dp)),
             Condition::Margin {
@@ -469,7 +469,7 @@ pub fn condition_scale<M: Model>(
         Condition::Eigen(_) => {
             let steps = structure.map_or(&[][..], |s| s.steps());
             let shift = std::f64::consts::TAU * structure.map_or(1, |s| s.periods()) as f64;
-            monodromy::<M>(p, steps, shift, points)
+            monodromy_spectral::<M>(p, steps, shift, points)
                 .ok()
                 .map_or(1.0, |dp| 1.0 + dp.trace().abs() + dp.determinant().abs())
         }

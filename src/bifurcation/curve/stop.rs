@@ -474,16 +474,16 @@ impl<M: Model> Tracer<'_, M> {
     /// other margins there. On an eigenvalue curve too: its end at a margin
     /// was the bracket's last trial before, which holds that margin only as
     /// well as the bracket closed on it (Shaw's pitchfork meeting the
-    /// passable onset: 3.1e-12 of its scale; solved, 2.0e-17). Where the
-    /// test function is not smooth at the point the solve does not
-    /// converge and the trial stays the end: the fold and period-doubling
-    /// ends at passable onsets of `stribeck8` and `stribeck::pl4` (static
-    /// and sliding friction agree at the belt's speed there, so the
-    /// arrival before the stick turns tangential as its onset's margin
-    /// vanishes); on `stribeck8` W=0.5:3 × Q0=1:12 the period-doubling test
-    /// function of the end near W = 1.7440 jumps from 0 to 6.2 over
-    /// 1.2e-4 in W, and its product with the onset's margin still has a
-    /// double zero there (Newton halves the margin each step).
+    /// passable onset: 3.1e-12 of its scale; solved, 2.0e-17). The test
+    /// function is smooth in the unknowns where an arrival before a stick
+    /// turns tangential (as a passable onset nears on `stribeck8` and
+    /// `stribeck::pl4`, whose static and sliding friction agree at the
+    /// belt's speed) only because `DP` takes such a flow together with its
+    /// stick ([`monodromy_spectral`](crate::orbit::periodic::monodromy_spectral)):
+    /// until stop 37 the product of the two carried `(v − V) / a`, a pole
+    /// off the motion, and this solve did not converge there (s8full's
+    /// period-doubling test function jumped from 0 to 6.2 over one Newton
+    /// step of 1.2e-4 in W; the end stayed at the bracket's trial, 5.2e-5).
     fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {
         if !matches!(
             self.sys.eval.condition,

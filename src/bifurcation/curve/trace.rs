@@ -27,7 +27,7 @@ use crate::bifurcation::detect;
 use crate::bifurcation::TransitionKind;
 use crate::model::{Model, ParamSet};
 use crate::orbit::admissible::{ConditionId, ViolationKind, SAME_EVENT};
-use crate::orbit::periodic::monodromy;
+use crate::orbit::periodic::monodromy_spectral;
 use crate::orbit::stability::Stability;
 
 use super::extended::Extended;
@@ -100,7 +100,7 @@ impl<M: Model> Tracer<'_, M> {
         let mut pts = vec![crate::orbit::periodic::SwitchingPoint { phase: 0.0, x: 0.0 }; m];
         Extended::<M>::points_into(&x, &mut pts);
         let dp = if m > 0 {
-            monodromy::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts).ok()
+            monodromy_spectral::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts).ok()
         } else {
             None
         };
@@ -401,7 +401,7 @@ impl<M: Model> Tracer<'_, M> {
             let m = (n - 2) / 2;
             let mut pts = vec![crate::orbit::periodic::SwitchingPoint { phase: 0.0, x: 0.0 }; m];
             Extended::<M>::points_into(&good.x, &mut pts);
-            let tr = monodromy::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
+            let tr = monodromy_spectral::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts)
                 .ok()
                 .map_or(0.0, |d| d.trace());
             let kind = if tr >= 0.0 {
