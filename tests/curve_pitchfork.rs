@@ -33,7 +33,7 @@ mod common;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
-use common::cycle::{other_ends, worst_residual};
+use common::cycle::{codim2_residuals, other_ends, worst_residual};
 use stickslip::bifurcation::curve::{
     codim2_residual, crossings, trace, Condition, Curve, CurveEndReason, CurveOptions, CurvePoint,
     Line,
@@ -234,7 +234,8 @@ fn a_sweep_locates_the_branch_point_on_the_curve() {
 /// system there were 11), the top edge finds the second symmetric motion's
 /// pitchfork, of `P_{0_11 2_11 1_11 0_11 1_11 2_11}`, and every point of
 /// every branch-point curve is a symmetric motion solving all its mapping
-/// equations to 1e-10 with `DP`'s eigenvalue 1 to 1e-9.
+/// equations to 1e-10 with `DP`'s eigenvalue 1 to 1e-9, and every
+/// codimension-two end of one holds its second condition to 1e-9.
 #[test]
 fn the_run_traces_both_pitchforks() {
     use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
@@ -290,4 +291,17 @@ fn the_run_traces_both_pitchforks() {
             "no pitchfork of {want}: {names:?}"
         );
     }
+    // Every codimension-two end of a pitchfork holds its second condition:
+    // the second pitchfork's bracket once took a trial that the corrector
+    // had carried back up the curve (W = 0.44240, Q0 = 1.23592, 0.02 in W
+    // from the bracket) for its good end, whose passable onset held to
+    // 3.3e-3 only.
+    let forks: Vec<Curve> = curves
+        .iter()
+        .filter(|c| c.kind == TransitionKind::BranchPoint)
+        .cloned()
+        .collect();
+    let ends = codim2_residuals::<Coulomb>(&base(), &plane(), &forks);
+    let worst = ends.iter().fold(0.0f64, |a, e| a.max(e.2));
+    assert!(ends.len() >= 2 && worst <= 1e-9, "{ends:?}");
 }

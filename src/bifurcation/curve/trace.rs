@@ -158,9 +158,23 @@ impl<M: Model> Tracer<'_, M> {
     ) -> (Sample, Option<Sample>) {
         let spans = self.sys.spans();
         let s_tol = self.opts.location_tolerance / spans[0].max(spans[1]);
+        // A trial the corrector carries further from its prediction than
+        // half its step is refused, as a step of [`Self::run`] is: it
+        // jumped to another stretch of the curve (Shaw's second pitchfork
+        // with `--edges`: a trial between W = 0.46727 and 0.46569 landed
+        // at W = 0.44240, Q0 = 1.23592, where the curve had passed on its
+        // way down, and was taken for the bracket's good end).
         let trial = |s: f64| {
             self.corrected(from, s, 4 * NEWTON_ITERATIONS)
-                .and_then(|(x, _)| self.examine(x, from.t.clone()))
+                .and_then(|(x, _)| {
+                    let pred: Vec<f64> =
+                        from.x.iter().zip(&from.t).map(|(a, d)| a + s * d).collect();
+                    let moved = self.sys.distance(&x, &pred);
+                    if moved > 0.5 * s.abs() {
+                        return Err(format!("the trial moves by {moved:.3e}"));
+                    }
+                    self.examine(x, from.t.clone())
+                })
                 .ok()
         };
         let (good, bad) = regula_falsi(g(from), s_bad, g_bad, s_tol, trial, g);
