@@ -293,12 +293,19 @@ impl<M: Model> Tracer<'_, M> {
     /// two unknowns the plane's) lie ahead of `prev` along its tangent and
     /// within `bound` of it in the plane (each parameter over its span).
     pub(super) fn ahead_within(&self, prev: &Sample, y: &[f64], bound: f64) -> bool {
-        let (n, k) = (prev.x.len(), y.len());
+        let n = prev.x.len();
+        self.ahead_along(&prev.x[n - 2..], &prev.t[n - 2..], y, bound)
+    }
+
+    /// [`Self::ahead_within`] from the plane point `from` along the plane
+    /// direction `dir` (each two values: the parameters).
+    pub(super) fn ahead_along(&self, from: &[f64], dir: &[f64], y: &[f64], bound: f64) -> bool {
+        let k = y.len();
         let spans = self.sys.spans();
         let ahead = (0..2)
-            .map(|a| (y[k - 2 + a] - prev.x[n - 2 + a]) * prev.t[n - 2 + a] / (spans[a] * spans[a]))
+            .map(|a| (y[k - 2 + a] - from[a]) * dir[a] / (spans[a] * spans[a]))
             .sum::<f64>();
-        let far = self.plane_distance(&y[k - 2..], &prev.x[n - 2..]);
+        let far = self.plane_distance(&y[k - 2..], from);
         ahead > 0.0 && far <= bound
     }
 

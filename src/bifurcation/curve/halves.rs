@@ -138,16 +138,10 @@ impl<M: Model> Tracer<'_, M> {
         // corrector may crawl on into the singular neighbourhood, its
         // tangent turning back and forth (s8box's period-2 fold at W ≈
         // 2.48567, once its test function was free of the arrival's time).
-        let mut trend = prev.clone();
         let back = &chosen[chosen.len() - 1].1.x;
-        for ((t, p), b) in trend.t[n - 2..]
-            .iter_mut()
-            .zip(&prev.x[n - 2..])
-            .zip(&back[n - 2..])
-        {
-            *t = p - b;
-        }
-        if !self.ahead_within(&trend, &z, 4.0 * reach + 16.0 * self.opts.min_step) {
+        let trend = [prev.x[n - 2] - back[n - 2], prev.x[n - 1] - back[n - 1]];
+        let bound = 4.0 * reach + 16.0 * self.opts.min_step;
+        if !self.ahead_along(&prev.x[n - 2..], &trend, &z, bound) {
             return None;
         }
         let z = self.holding_on(sys, z)?;

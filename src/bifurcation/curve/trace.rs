@@ -167,12 +167,7 @@ impl<M: Model> Tracer<'_, M> {
         let trial = |s: f64| {
             self.corrected(from, s, 4 * NEWTON_ITERATIONS)
                 .and_then(|(x, _)| {
-                    let pred: Vec<f64> =
-                        from.x.iter().zip(&from.t).map(|(a, d)| a + s * d).collect();
-                    let moved = self.sys.distance(&x, &pred);
-                    if moved > 0.5 * s.abs() {
-                        return Err(format!("the trial moves by {moved:.3e}"));
-                    }
+                    self.within_step(from, s, &x)?;
                     self.examine(x, from.t.clone())
                 })
                 .ok()
@@ -295,6 +290,20 @@ impl<M: Model> Tracer<'_, M> {
             sx.total_cmp(&sy)
         });
         out
+    }
+
+    /// `Err` where the corrector carried `x`, the point corrected from the
+    /// step of length `s` along `from`'s tangent, more than half the step
+    /// from that prediction: it jumped to another stretch of the curve.
+    fn within_step(&self, from: &Sample, s: f64, x: &[f64]) -> Result<(), String> {
+        let pred: Vec<f64> = from.x.iter().zip(&from.t).map(|(a, d)| a + s * d).collect();
+        let moved = self.sys.distance(x, &pred);
+        if moved > 0.5 * s.abs() {
+            return Err(format!(
+                "the corrector moves the point by {moved:.3e}, more than half the step {s:.3e}"
+            ));
+        }
+        Ok(())
     }
 
     /// How far (in the plane, each parameter over its span) a codimension-two
@@ -494,14 +503,7 @@ impl<M: Model> Tracer<'_, M> {
             let accepted = self
                 .corrected(&prev, ds, NEWTON_ITERATIONS)
                 .and_then(|(x, it)| {
-                    let pred: Vec<f64> =
-                        prev.x.iter().zip(&prev.t).map(|(a, d)| a + ds * d).collect();
-                    let moved = self.sys.distance(&x, &pred);
-                    if moved > 0.5 * ds {
-                        return Err(format!(
-                            "the corrector moves the point by {moved:.3e}, more than half the step {ds:.3e}"
-                        ));
-                    }
+                    self.within_step(&prev, ds, &x)?;
                     let mut t = prev.t.clone();
                     self.sys.tangent(&x, &prev.t, &mut t)?;
                     let turn = self.sys.dot(&t, &prev.t);

@@ -95,7 +95,8 @@ fn stuck(plane: &Plane, curve: &Curve) -> Option<String> {
     let [a, b] = curve.ends.as_slice() else {
         return None;
     };
-    let (why, _) = (failed(a)?, failed(b)?);
+    failed(b)?;
+    let why = failed(a)?;
     let first = curve.points.first()?;
     let spans = [
         plane.x_range[1] - plane.x_range[0],
