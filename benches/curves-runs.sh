@@ -8,6 +8,8 @@
 #   benches/curves-runs.sh            # all seven (pl4 takes most of the time)
 #   benches/curves-runs.sh s8box      # one of them, by name
 #   EXTRA="--probes 4" benches/curves-runs.sh fig11   # with more options
+#   EXTRA=--no-edges benches/curves-runs.sh          # without the box edges' sweeps
+#                                                    # (the default until stop 38)
 #   BIN=/tmp/old/stickslip OUT=/tmp/old-runs benches/curves-runs.sh  # another build
 #
 # The JSON of each run is kept in target/curves-runs/NAME.json (or OUT).

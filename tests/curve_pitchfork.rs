@@ -229,7 +229,7 @@ fn a_sweep_locates_the_branch_point_on_the_curve() {
     );
 }
 
-/// The whole run over Shaw's box with the box's edges swept (`--edges`):
+/// The whole run over Shaw's box with the box's edges swept (the default):
 /// no branch point is left untraced (`failed_starts`; before the symmetric
 /// system there were 11), the top edge finds the second symmetric motion's
 /// pitchfork, of `P_{0_11 2_11 1_11 0_11 1_11 2_11}`, and every point of

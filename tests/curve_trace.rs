@@ -759,8 +759,11 @@ fn a_passable_onset_curve_with_singular_dp_crosses_the_box() {
         seeds: vec![Line::Y(135.0)],
         at: Vec::new(),
     };
+    // The seed line alone: the edges' sweeps trace other passable-onset
+    // curves of the box first (one ends at a codimension-two point).
     let settings = CurvesSettings {
         spread: 0,
+        edges: false,
         ..CurvesSettings::default()
     };
     let plane = opts.plane::<Paper>(&base).expect("a valid box");

@@ -2,7 +2,7 @@
 //! `failed_starts`, and a "Missing curves" block in the text), not dropped.
 //!
 //! One seed line across Shaw's box (`coulomb` with `V = 0, d = 0,
-//! mus = 0.45, muk = 0.3`; no spread, missing-curve or refinement lines),
+//! mus = 0.45, muk = 0.3`; no spread, edge, missing-curve or refinement lines),
 //! traced once as usual and once with a corrector tolerance no Newton step
 //! reaches (1e-300), so that every trace fails at its start. The second
 //! run must list every transition the first traced a curve from, on the
@@ -29,6 +29,7 @@ fn run(tolerance: Option<f64>) -> CurveSet {
     let mut settings = CurvesSettings {
         count: 40,
         spread: 0,
+        edges: false,
         max_missing: 0,
         max_refine: 0,
         ..CurvesSettings::default()

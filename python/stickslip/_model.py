@@ -209,7 +209,7 @@ class Model:
         spread: Optional[int] = None,
         max_mappings: Optional[int] = None,
         probes: Optional[int] = None,
-        edges: bool = False,
+        edges: bool = True,
         **fixed: Number,
     ) -> Curves:
         """The transition curves over the box ``x × y``, each side
@@ -226,8 +226,8 @@ class Model:
         (default 24; ``--max-mappings``); ``probes``: short sweeps across
         each curve at this many places, finding the bands no line crosses
         (default 0, off; ``--probes``); ``edges``: sweep the box's four
-        edges too, where every curve that leaves the box crosses
-        (``--edges``)."""
+        edges too, where every curve that leaves the box crosses (default
+        True; ``False`` is ``--no-edges``)."""
         data = _native.curves(
             self.name,
             _pairs(fixed),

@@ -84,7 +84,7 @@ def curves(
     spread: Optional[int] = None,
     max_mappings: Optional[int] = None,
     probes: Optional[int] = None,
-    edges: bool = False,
+    edges: bool = True,
 ) -> str: ...
 def lyapunov(
     model: str,

@@ -51,10 +51,14 @@ pub struct CurvesArgs {
     /// Extra seed lines spread evenly over the box, this many each way.
     #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().spread)]
     spread: usize,
-    /// Sweep the box's four edges too: every curve that leaves the box
-    /// crosses one (more curves, longer runs: README, "Regime maps").
-    #[arg(long)]
+    /// Sweep the box's four edges too (the default): every curve that
+    /// leaves the box crosses one.
+    #[arg(long, overrides_with = "no_edges")]
     edges: bool,
+    /// Do not sweep the box's edges: fewer curves, shorter runs (README,
+    /// "Regime maps").
+    #[arg(long, overrides_with = "edges")]
+    no_edges: bool,
     /// Trace the transitions of motions of at most this many mappings (the
     /// long cycles of period-adding cascades cost a continuation of that
     /// many switching points each).
@@ -136,7 +140,7 @@ impl WithModel for CurvesCmd {
         let settings = CurvesSettings {
             count: self.args.count,
             spread: self.args.spread,
-            edges: self.args.edges,
+            edges: !self.args.no_edges,
             max_mappings: self.args.max_mappings,
             probes: self.args.probes,
             ..CurvesSettings::default()

@@ -49,11 +49,11 @@ impl Command for Curves {
 /// `count` grid values per line's sweep, `spread` extra lines each way,
 /// `max_mappings` the longest motion whose transitions are traced,
 /// `probes` the short sweeps across each curve, `edges` the box's edges
-/// swept too.
+/// swept too (default true).
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None, edges = false))]
+#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None, edges = true))]
 pub fn curves(
     py: Python<'_>,
     model: &str,

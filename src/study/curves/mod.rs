@@ -195,10 +195,11 @@ pub struct CurvesSettings {
     /// ones).
     pub spread: usize,
     /// Sweep the box's four edges too: every curve that leaves the box
-    /// crosses one. Off by default: measured with
-    /// `EXTRA=--edges bash benches/curves-runs.sh` (README, "Regime maps"),
-    /// it finds 29 curves on Shaw's box where 20 are found without, and
-    /// 70 on Fig. 11's where 39 are, at three times the run time there.
+    /// crosses one. On by default: measured with
+    /// `bash benches/curves-runs.sh` and `EXTRA=--no-edges` (README,
+    /// "Regime maps"), it finds 29 curves on Shaw's box where 20 are found
+    /// without, and 70 on Fig. 11's where 39 are, at three times the run
+    /// time there.
     pub edges: bool,
     /// At most this many lines added near transitions no traced curve passes.
     pub max_missing: usize,
@@ -225,7 +226,7 @@ impl Default for CurvesSettings {
         Self {
             count: 100,
             spread: 3,
-            edges: false,
+            edges: true,
             max_missing: 6,
             max_refine: 4,
             probes: 0,
