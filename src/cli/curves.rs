@@ -53,6 +53,8 @@ pub struct CurvesArgs {
     spread: usize,
     /// Sweep the box's four edges too (the default): every curve that
     /// leaves the box crosses one.
+    // Read only by clap: it makes `--edges` (the opt-in until stop 38)
+    // accepted and lets the later of `--edges` / `--no-edges` win.
     #[arg(long, overrides_with = "no_edges")]
     edges: bool,
     /// Do not sweep the box's edges: fewer curves, shorter runs (README,
