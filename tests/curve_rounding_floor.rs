@@ -128,9 +128,12 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
     // re-solved either side (the seventh is the end where the period
     // doubling meets the stick's vanishing, the motion's equations
     // singular there); since stop 29 (finite differences at 1e-7) two of
-    // 7 are curve ends and not re-solved. Only an end may fail.
+    // 7 are curve ends and not re-solved; since stop 39, whose test
+    // functions are cleared of the pole of a stick's exit turning
+    // tangential (`exit_rates` in `bifurcation/curve/condition.rs`), 4 points
+    // are steep, one of them an end. Only an end may fail.
     assert!(
-        steep >= 5 && checked + 2 >= steep && unsolved_far == 0.0,
+        steep >= 3 && checked + 2 >= steep && unsolved_far == 0.0,
         "{checked} of {steep} steep points re-solved; one not re-solved lies {unsolved_far:e} from its curve's end"
     );
 }

@@ -8,11 +8,14 @@
 //!   the matching entries), in the quantity's unit (a velocity, an
 //!   acceleration, a force or a phase); a stick that must not end early
 //!   (`StickEnd`) by the smooth margin of `orbit::admissible::margin_of`
-//!   (`as ∓ Fnf` at the stick's interior extrema of `Fnf`, a force).
+//!   (`as ∓ Fnf` at the stick's interior extrema of `Fnf`, or the exit's
+//!   rate `d|Fnf|/dφ` if smaller, a force).
 //! * `Eigen(Fold)` and `Eigen(BranchPoint)`: `det(I − DP)`;
 //!   `Eigen(PeriodDoubling)`: `det(I + DP)`; `Eigen(NeimarkSacker)`:
 //!   `det DP − 1` (dimensionless; the pair's being complex is watched along
-//!   the curve, not imposed).
+//!   the curve, not imposed), each times the product of the sticks' exit
+//!   rates over their scales ([`exit_rates`]: `DP` has a pole where an exit
+//!   turns tangential, which the product clears).
 //! * `RestGrazing`: the velocity margin of the no-motion regime's steady
 //!   forced response ([`crate::orbit::steady::steady_response`]) to the
 //!   boundary: `v_b − max v` when the boundary bounds the domain above,
@@ -28,7 +31,7 @@ use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{MappingKind, Model};
 use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
-use crate::orbit::periodic::{monodromy, monodromy_spectral, SwitchingPoint};
+use crate::orbit::periodic::{arrival, monodromy, monodromy_spectral, SwitchingPoint};
 use crate::orbit::steady::steady_response;
 use crate::orbit::structure::Structure;
 
@@ -40,6 +43,53 @@ pub(super) fn eigen_value(kind: TransitionKind, dp: &Matrix2<f64>) -> f64 {
         TransitionKind::NeimarkSacker => det - 1.0,
         _ => 1.0 - tr + det,
     }
+}
+
+/// The product over the sticks of `steps` at `points` of each exit's rate
+/// `d|Fnf|/dφ` (`orbit::admissible::stick_exit_rate`) over its scale
+/// `|A0| + as + |c v_s / W|`: what an eigenvalue test function of the whole
+/// cycle is multiplied by. A stick's exit phase moves with its start as
+/// `1 / (dFnf/dφ)`, so `DP` has a simple pole where an exit turns
+/// tangential, and `det(I ± DP)` with it; the product clears it, leaving a
+/// function smooth through that point with the same zeros elsewhere. The
+/// test function is then smooth where a motion's period-doubling curve runs
+/// into a stick's tangential exit: on the paper model near W = 2.6977,
+/// Q0 = 204.18 (`P_{3_31 0_11 1_11 0_11 1_11 3_13 4_33 3_31 0_11 1_11 3_13
+/// 4_33}`, the box of `tests/curve_stick_end.rs`) the raw `det(I + DP)` could
+/// be held only to 1e-7 of its scale there and the curve crawled to a
+/// corrector failure 6.4e-6 (of a force near 200) short of the exit's
+/// tangency. Sticks that take no time count 1.
+pub(super) fn exit_rates<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> f64 {
+    let info = M::INFO;
+    let Some(bound) = M::static_bound(p) else {
+        return 1.0;
+    };
+    if points.len() != steps.len() {
+        return 1.0;
+    }
+    let osc = M::oscillator(p);
+    let mut product = 1.0;
+    for (k, &step) in steps.iter().enumerate() {
+        let mi = info.mappings[step];
+        if mi.kind != MappingKind::Stick {
+            continue;
+        }
+        let b = arrival(points, k, shift);
+        let Some(rate) =
+            admissible::stick_exit_rate::<M>(p, mi.from, points[k].x, points[k].phase, b.phase)
+        else {
+            continue;
+        };
+        let vs = M::boundary_velocity(p, mi.from);
+        let scale = osc.amplitude.abs() + bound.abs() + (osc.stiffness * vs / osc.frequency).abs();
+        product *= rate / scale.max(f64::MIN_POSITIVE);
+    }
+    product
 }
 
 /// The mirrored half-cycle map `R DG` of a symmetric motion at `points`
@@ -236,8 +286,8 @@ impl<M: Model> Evaluator<M> {
     }
 
     /// The smooth margin of the stick end `id` (`orbit::admissible::margin_of`:
-    /// `as ∓ Fnf` at the stick's interior extrema of `Fnf`), `None` where
-    /// `Fnf` has no interior extremum (no early end to watch).
+    /// `as ∓ Fnf` at the stick's interior extrema of `Fnf`, or the exit's
+    /// rate if smaller), `None` where the walk has none.
     fn stick_end_margin(
         &self,
         structure: &Structure,
@@ -312,7 +362,9 @@ impl<M: Model> Evaluator<M> {
             }
             Condition::Eigen(kind) => monodromy_spectral::<M>(p, &self.steps, self.shift, points)
                 .ok()
-                .map_or(f64::NAN, |dp| eigen_value(kind, &dp)),
+                .map_or(f64::NAN, |dp| {
+                    eigen_value(kind, &dp) * exit_rates::<M>(p, &self.steps, self.shift, points)
+                }),
             Condition::Margin {
                 kind,
                 segment,
@@ -344,7 +396,8 @@ impl<M: Model> Evaluator<M> {
     /// for `RestGrazing` the domain's other boundary (segment 0).
     ///
     /// A stick's end is watched by its smooth margin (`as ∓ Fnf` at the
-    /// stick's interior extrema of `Fnf`, none without one), not by the
+    /// stick's interior extrema of `Fnf`, or the exit's rate if smaller),
+    /// not by the
     /// event search's phase difference: that one is the phase tolerance
     /// (`1e-7` of the phase, a constant `2e-6` at phase 20) wherever the
     /// stick ends as claimed, so on a motion with a stick it would be the
@@ -471,7 +524,10 @@ pub fn condition_scale<M: Model>(
             let shift = std::f64::consts::TAU * structure.map_or(1, |s| s.periods()) as f64;
             monodromy_spectral::<M>(p, steps, shift, points)
                 .ok()
-                .map_or(1.0, |dp| 1.0 + dp.trace().abs() + dp.determinant().abs())
+                .map_or(1.0, |dp| {
+                    (1.0 + dp.trace().abs() + dp.determinant().abs())
+                        * exit_rates::<M>(p, steps, shift, points).abs()
+                })
         }
         Condition::RestGrazing { .. } => velocity(),
         // An acceleration, or its rate (over time: one more factor W).

@@ -542,15 +542,17 @@ fn halves_residual<M: Model>(
 /// starts and ends on (an excursion shrinking to nothing: its margin
 /// vanishes quadratically, its arrival's linearly, and the arrival is
 /// taken). A stick's end (`StickEnd`) is measured by its smooth margin
-/// (the interior extrema of `Fnf` against `±as`,
-/// `orbit::admissible::margin_of`) rather than the event search's phase
+/// (the interior extrema of `Fnf` against `±as`, or the exit's rate
+/// `d|Fnf|/dφ` if smaller, `orbit::admissible::margin_of`) rather than the
+/// event search's phase
 /// difference, which jumps; where the event search's margin is the
 /// smallest (the sweep located a stick that ends early) the smooth one must
 /// be the smallest too. `None` if nothing is evaluable, if the smallest
 /// (by the event search) is a stick's end whose smooth margin is not the
 /// smallest (a stick that never ends), or whose extremum of `Fnf` lies
-/// within `1e-3` rad of an end of the stick (its exit turning tangential:
-/// the margin vanishes quadratically), or if a segment's duration is below `1e-3` rad
+/// within `1e-3` rad of the stick's start (the margin vanishes
+/// quadratically; at its exit the exit's rate is the margin, a simple zero,
+/// since stop 39), or if a segment's duration is below `1e-3` rad
 /// there (a segment shrinking to nothing: the structure's equations
 /// degenerate on the curve, which the motion on the other side of the
 /// transition carries). For an
@@ -578,7 +580,7 @@ pub fn condition_at_transition<M: Model>(
         .min_by(|a, b| a.margin.total_cmp(&b.margin))
         .map(|c| (c.kind, c.segment, c.boundary))?;
     // A stick's end measured by its smooth margin (the interior extrema of
-    // Fnf against ±as), NaN where it has none.
+    // Fnf against ±as, or the exit's rate if smaller), NaN where it has none.
     for c in all.iter_mut().filter(|c| c.kind == ViolationKind::StickEnd) {
         c.margin = admissible::margin_of(&sim, structure, points, (c.kind, c.segment, c.boundary))
             .unwrap_or(f64::NAN);
@@ -632,12 +634,16 @@ pub fn condition_at_transition<M: Model>(
         return None;
     }
     let chosen = pick(true).or_else(|| pick(false))?;
-    // A stick's end whose extremum of Fnf sits at an end of the stick (its
-    // exit turning tangential): the margin vanishes quadratically there.
+    // A stick's end whose extremum of Fnf sits at the stick's start: the
+    // margin vanishes quadratically there. (At its exit the margin is the
+    // exit's rate, a simple zero.)
     if chosen.kind == ViolationKind::StickEnd {
-        let (_, gap) = admissible::early_end_extremum(&sim, structure, points, chosen.segment)?;
-        if gap <= VANISHING {
-            return None;
+        if let Some((_, gap)) =
+            admissible::early_end_extremum(&sim, structure, points, chosen.segment)
+        {
+            if gap <= VANISHING {
+                return None;
+            }
         }
     }
     Some(Condition::Margin {

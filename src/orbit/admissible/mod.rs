@@ -33,7 +33,7 @@ mod sink;
 mod stick;
 
 use contact::first_contact;
-pub(crate) use stick::{early_end, early_end_extremum, end_touch};
+pub(crate) use stick::{early_end, early_end_extremum, end_touch, stick_exit_rate};
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
 use sink::{Except, Only, Sink, Violated, Worst};
@@ -294,9 +294,10 @@ pub fn worst_margin<M: Model>(
 /// allocation: the condition of a two-parameter curve. Each margin is a
 /// smooth function of the points here: the interior margin from the closed
 /// form with no event search, and a stick's end (`StickEnd`) by the
-/// interior extrema of `Fnf` against `±as` (a force; `None` when `Fnf` has
-/// no extremum inside the stick) instead of the event search's phase
-/// difference, which jumps where the stick starts to end early.
+/// interior extrema of `Fnf` against `±as` and the exit's rate
+/// `d|Fnf|/dφ`, the smaller (a force; `stick::early_end_margin`) instead of
+/// the event search's phase difference, which jumps where the stick starts
+/// to end early.
 pub(crate) fn margin_of<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
@@ -378,7 +379,7 @@ fn walk<M: Model>(
         match (mi.kind, mi.domain) {
             (MappingKind::Stick, _) if smooth => {
                 // As a smooth function of the points: the interior extrema
-                // of Fnf against ±as (none: no early end to watch).
+                // of Fnf against ±as and the exit's rate, the smaller.
                 if let Some(m) = stick::early_end_margin(sim, mi.from, a.x, a.phase, b.phase) {
                     add(ViolationKind::StickEnd, Some(mi.from), m, &|| {
                         format!(

@@ -18,6 +18,19 @@
 //! where the stick ends against where the structure says) jumps there, so
 //! a sweep locates the transition by bisection; this margin crosses zero
 //! with it, and a curve can be traced on it.
+//!
+//! The stick also ends early where its exit turns tangential: at the exit
+//! `|Fnf| = as` by the structure's own equation, and the stick ends there
+//! only if `|Fnf|` reaches `as` from inside, `d|Fnf|/dφ > 0`. Where that
+//! rate is negative `|Fnf|` was above `as` just before the exit (an extremum
+//! of `Fnf` has entered the stick through its exit). The interior
+//! extremum's margin vanishes quadratically there (its distance to the
+//! exit squared, and only on the side where it is inside), the rate
+//! linearly: the margin is the smaller of the two, so that the transition
+//! has a simple zero a curve can be traced on (the paper model's
+//! `P_{3_31 0_11 1_11 0_11 1_11 3_13 4_33 3_31 0_11 1_11 3_13 4_33}` near
+//! W = 2.6977, Q0 = 204.18: `DP` has a pole there, `1 / (dFnf/dφ)` from the
+//! exit's phase, and the motion's period-doubling curve runs into it).
 
 use crate::dynamics::simulate::Simulator;
 use crate::model::{MappingKind, Model};
@@ -27,10 +40,11 @@ use std::cmp::Ordering;
 
 /// The margin of the stick on boundary `k` from `(x_a, φ_a)` to phase
 /// `phi_b` against an early end (see the module): the smallest over its
-/// interior extrema of `Fnf`, in force per unit mass; `None` when `Fnf`
-/// has no extremum strictly inside `(φ_a, φ_b)` or the model has no static
-/// bound there. `as − |Fnf|` at an extremum is its value at the extremum's
-/// own side (a maximum against `+as`, a minimum against `−as`).
+/// interior extrema of `Fnf` and its exit's rate ([`exit_rate`]), in force
+/// per unit mass (the rate per radian of forcing phase); `None` when the
+/// model has no static bound there. `as − |Fnf|` at an extremum is its
+/// value at the extremum's own side (a maximum against `+as`, a minimum
+/// against `−as`). NaN where either is.
 pub(super) fn early_end_margin<M: Model>(
     sim: &Simulator<M>,
     k: usize,
@@ -38,14 +52,66 @@ pub(super) fn early_end_margin<M: Model>(
     phi_a: f64,
     phi_b: f64,
 ) -> Option<f64> {
-    early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _, _)| m)
+    let interior = early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _, _)| m);
+    let exit = exit_rate(sim, k, x_a, phi_a, phi_b);
+    match (interior, exit) {
+        (Some(a), Some(b)) if a.is_nan() || b.is_nan() => Some(f64::NAN),
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
 }
 
-/// The margin of [`early_end_margin`] of the stick `segment` of `structure`
-/// at `points`, with the phase from its extremum to the nearer end of the
-/// stick: an extremum at an end (the stick's exit turning tangential) makes
-/// the margin vanish quadratically, no curve to trace. `None` if `segment`
-/// is no stick or has no interior extremum.
+/// `d|Fnf|/dφ` at the exit `phi_b` of the stick on boundary `k` from
+/// `(x_a, φ_a)` (`|Fnf| = as` there): positive where `|Fnf|` reaches `as`
+/// from inside and the stick ends as claimed, zero where the exit turns
+/// tangential, negative where `|Fnf|` was beyond `as` just before (the
+/// stick ended earlier). `None` if the model has no static bound on `k` or
+/// the stick takes no time.
+pub(crate) fn exit_rate<M: Model>(
+    sim: &Simulator<M>,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> Option<f64> {
+    let (stick, _) = sim.stick()?;
+    if stick != k {
+        return None;
+    }
+    stick_exit_rate::<M>(sim.params(), k, x_a, phi_a, phi_b)
+}
+
+/// [`exit_rate`] from the model's closed forms at `p` (no simulator): what
+/// the monodromy's pole at a tangential exit is cleared with
+/// (`bifurcation::curve::condition`). `None` if `k` is not the model's stick
+/// boundary, the model has no static bound, or the stick takes no time.
+pub(crate) fn stick_exit_rate<M: Model>(
+    p: &M::Params,
+    k: usize,
+    x_a: f64,
+    phi_a: f64,
+    phi_b: f64,
+) -> Option<f64> {
+    if M::INFO.stick_boundary() != Some(k)
+        || M::static_bound(p).is_none()
+        || phi_a.partial_cmp(&phi_b) != Some(Ordering::Less)
+    {
+        return None;
+    }
+    let osc = M::oscillator(p);
+    let vs = M::boundary_velocity(p, k);
+    let x = x_a + vs * (phi_b - phi_a) / osc.frequency;
+    let f = M::stick_forces(p, x, phi_b)?.non_friction;
+    let rate = -osc.amplitude * phi_b.sin() - osc.stiffness * vs / osc.frequency;
+    Some(f.signum() * rate)
+}
+
+/// The interior extremum of [`early_end`] of the stick `segment` of
+/// `structure` at `points` with the smallest margin: that margin and the
+/// phase from the stick's start to it. An extremum at the start makes the
+/// margin vanish quadratically, no curve to trace; one at the exit is the
+/// exit turning tangential, whose rate [`early_end_margin`] takes. `None`
+/// if `segment` is no stick or has no interior extremum.
 pub(crate) fn early_end_extremum<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
@@ -53,7 +119,7 @@ pub(crate) fn early_end_extremum<M: Model>(
     segment: usize,
 ) -> Option<(f64, f64)> {
     let (k, a, b) = stick_ends::<M>(structure, points, segment)?;
-    early_end(sim, k, a.x, a.phase, b.phase).map(|(m, gap, _)| (m, gap))
+    early_end(sim, k, a.x, a.phase, b.phase).map(|(m, _, phi)| (m, phi - a.phase))
 }
 
 /// The boundary the stick `segment` of `structure` sticks on, its start and
@@ -257,4 +323,59 @@ fn force_along<M: Model>(
 fn force_rate<M: Model>(sim: &Simulator<M>, k: usize, phi: f64) -> f64 {
     let osc = sim.oscillator();
     -osc.amplitude * phi.sin() - osc.stiffness * sim.velocity(k) / osc.frequency
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::simulate::SimOptions;
+    use crate::models::paper::{Paper, Params};
+
+    /// The exit's rate is `d|Fnf|/dφ` of the force along the stick, by
+    /// central differences of `force_along` at the exit (which move the
+    /// mass with the belt), at phases where it is positive, negative and
+    /// near zero; and the stick's smooth margin is the smaller of it and
+    /// the interior extrema's.
+    #[test]
+    fn the_exit_rate_is_the_force_rate_along_the_stick() {
+        // Each with `Q0 W > c V m` (SPEC §3): `Fnf` has extrema on a stick.
+        for (w, q) in [(2.6977, 204.18), (3.7, 150.0), (8.0, 70.0)] {
+            let p = Params {
+                W: w,
+                Q0: q,
+                ..Params::default()
+            };
+            let sim = Simulator::<Paper>::new(p, SimOptions::default()).expect("params");
+            let (k, _) = sim.stick().expect("a stick boundary");
+            let (x_a, phi_a) = (0.3, 1.0);
+            let mut signs = [false; 2];
+            for i in 1..200 {
+                let phi_b = phi_a + 0.031 * i as f64;
+                let rate = exit_rate(&sim, k, x_a, phi_a, phi_b).expect("a rate");
+                let h = 1e-6;
+                let f = |phi: f64| force_along(&sim, k, x_a, phi_a, phi).expect("Fnf").abs();
+                let fd = (f(phi_b + h) - f(phi_b - h)) / (2.0 * h);
+                let scale = 1.0 + rate.abs();
+                assert!(
+                    (rate - fd).abs() <= 1e-6 * scale,
+                    "W = {w}, Q0 = {q}, φ_b = {phi_b}: {rate} against {fd}"
+                );
+                signs[usize::from(rate > 0.0)] = true;
+                let margin = early_end_margin(&sim, k, x_a, phi_a, phi_b).expect("a margin");
+                let interior = early_end(&sim, k, x_a, phi_a, phi_b).map(|(m, _, _)| m);
+                assert_eq!(margin, interior.map_or(rate, |m| m.min(rate)));
+            }
+            assert!(signs[0] && signs[1], "W = {w}, Q0 = {q}: one sign only");
+        }
+    }
+
+    /// A stick that takes no time has no exit rate.
+    #[test]
+    fn a_stick_of_no_time_has_no_exit_rate() {
+        let sim =
+            Simulator::<Paper>::new(Params::default(), SimOptions::default()).expect("params");
+        let (k, _) = sim.stick().expect("a stick boundary");
+        assert_eq!(exit_rate(&sim, k, 0.0, 1.0, 1.0), None);
+        assert_eq!(exit_rate(&sim, k + 1, 0.0, 1.0, 2.0), None);
+    }
 }
