@@ -33,7 +33,7 @@
 //! exit's phase, and the motion's period-doubling curve runs into it).
 
 use crate::dynamics::simulate::Simulator;
-use crate::model::{MappingKind, Model};
+use crate::model::{MappingKind, Model, Oscillator};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 use std::cmp::Ordering;
@@ -53,7 +53,7 @@ pub(super) fn early_end_margin<M: Model>(
     phi_b: f64,
 ) -> Option<f64> {
     let interior = early_end(sim, k, x_a, phi_a, phi_b).map(|(m, _, _)| m);
-    let exit = exit_rate(sim, k, x_a, phi_a, phi_b);
+    let exit = stick_exit_rate::<M>(sim.params(), k, x_a, phi_a, phi_b);
     match (interior, exit) {
         (Some(a), Some(b)) if a.is_nan() || b.is_nan() => Some(f64::NAN),
         (Some(a), Some(b)) => Some(a.min(b)),
@@ -62,29 +62,14 @@ pub(super) fn early_end_margin<M: Model>(
 }
 
 /// `d|Fnf|/dφ` at the exit `phi_b` of the stick on boundary `k` from
-/// `(x_a, φ_a)` (`|Fnf| = as` there): positive where `|Fnf|` reaches `as`
-/// from inside and the stick ends as claimed, zero where the exit turns
-/// tangential, negative where `|Fnf|` was beyond `as` just before (the
-/// stick ended earlier). `None` if the model has no static bound on `k` or
-/// the stick takes no time.
-pub(crate) fn exit_rate<M: Model>(
-    sim: &Simulator<M>,
-    k: usize,
-    x_a: f64,
-    phi_a: f64,
-    phi_b: f64,
-) -> Option<f64> {
-    let (stick, _) = sim.stick()?;
-    if stick != k {
-        return None;
-    }
-    stick_exit_rate::<M>(sim.params(), k, x_a, phi_a, phi_b)
-}
-
-/// [`exit_rate`] from the model's closed forms at `p` (no simulator): what
-/// the monodromy's pole at a tangential exit is cleared with
-/// (`bifurcation::curve::condition`). `None` if `k` is not the model's stick
-/// boundary, the model has no static bound, or the stick takes no time.
+/// `(x_a, φ_a)` at `p` (`|Fnf| = as` there): positive where `|Fnf|`
+/// reaches `as` from inside and the stick ends as claimed, zero where the
+/// exit turns tangential, negative where `|Fnf|` was beyond `as` just before
+/// (the stick ended earlier). From the model's closed forms alone (no
+/// simulator): also what the monodromy's pole at a tangential exit is
+/// cleared with (`bifurcation::curve::condition::exit_rates`). `None` if
+/// `k` is not the model's stick boundary, the model has no static bound,
+/// or the stick takes no time.
 pub(crate) fn stick_exit_rate<M: Model>(
     p: &M::Params,
     k: usize,
@@ -100,10 +85,8 @@ pub(crate) fn stick_exit_rate<M: Model>(
     }
     let osc = M::oscillator(p);
     let vs = M::boundary_velocity(p, k);
-    let x = x_a + vs * (phi_b - phi_a) / osc.frequency;
-    let f = M::stick_forces(p, x, phi_b)?.non_friction;
-    let rate = -osc.amplitude * phi_b.sin() - osc.stiffness * vs / osc.frequency;
-    Some(f.signum() * rate)
+    let f = fnf_along::<M>(p, vs, osc.frequency, x_a, phi_a, phi_b)?;
+    Some(f.signum() * fnf_rate(&osc, vs, phi_b))
 }
 
 /// The interior extremum of [`early_end`] of the stick `segment` of
@@ -314,15 +297,33 @@ fn force_along<M: Model>(
     phi_a: f64,
     phi: f64,
 ) -> Option<f64> {
-    let x = x_a + sim.velocity(k) * (phi - phi_a) / sim.oscillator().frequency;
-    M::stick_forces(sim.params(), x, phi).map(|f| f.non_friction)
+    let w = sim.oscillator().frequency;
+    fnf_along::<M>(sim.params(), sim.velocity(k), w, x_a, phi_a, phi)
 }
 
 /// `dFnf/dφ = −A0 sin φ − c v_k / W` at phase `phi` of a stick on boundary
 /// `k` (the rate of [`force_along`]).
 fn force_rate<M: Model>(sim: &Simulator<M>, k: usize, phi: f64) -> f64 {
-    let osc = sim.oscillator();
-    -osc.amplitude * phi.sin() - osc.stiffness * sim.velocity(k) / osc.frequency
+    fnf_rate(&sim.oscillator(), sim.velocity(k), phi)
+}
+
+/// [`force_along`] at `p` for a stick moving at `vs` under forcing
+/// frequency `w`.
+fn fnf_along<M: Model>(
+    p: &M::Params,
+    vs: f64,
+    w: f64,
+    x_a: f64,
+    phi_a: f64,
+    phi: f64,
+) -> Option<f64> {
+    let x = x_a + vs * (phi - phi_a) / w;
+    M::stick_forces(p, x, phi).map(|f| f.non_friction)
+}
+
+/// [`force_rate`] for the oscillator `osc` and a stick moving at `vs`.
+fn fnf_rate(osc: &Oscillator, vs: f64, phi: f64) -> f64 {
+    -osc.amplitude * phi.sin() - osc.stiffness * vs / osc.frequency
 }
 
 #[cfg(test)]
@@ -351,7 +352,7 @@ mod tests {
             let mut signs = [false; 2];
             for i in 1..200 {
                 let phi_b = phi_a + 0.031 * i as f64;
-                let rate = exit_rate(&sim, k, x_a, phi_a, phi_b).expect("a rate");
+                let rate = stick_exit_rate::<Paper>(&p, k, x_a, phi_a, phi_b).expect("a rate");
                 let h = 1e-6;
                 let f = |phi: f64| force_along(&sim, k, x_a, phi_a, phi).expect("Fnf").abs();
                 let fd = (f(phi_b + h) - f(phi_b - h)) / (2.0 * h);
@@ -375,7 +376,8 @@ mod tests {
         let sim =
             Simulator::<Paper>::new(Params::default(), SimOptions::default()).expect("params");
         let (k, _) = sim.stick().expect("a stick boundary");
-        assert_eq!(exit_rate(&sim, k, 0.0, 1.0, 1.0), None);
-        assert_eq!(exit_rate(&sim, k + 1, 0.0, 1.0, 2.0), None);
+        let p = Params::default();
+        assert_eq!(stick_exit_rate::<Paper>(&p, k, 0.0, 1.0, 1.0), None);
+        assert_eq!(stick_exit_rate::<Paper>(&p, k + 1, 0.0, 1.0, 2.0), None);
     }
 }
