@@ -13,6 +13,11 @@
 //! reported with the excursion's two switching points both at the graze (a
 //! segment of zero length solves its mapping equation exactly).
 //!
+//! A sweep that ends a branch where an excursion shrinks to nothing gives
+//! a start on the same degenerate point: [`reduced_start`] carries it to the
+//! reduced motion, whose curve it is (`study::curves` does so where the
+//! motion's own curve cannot start).
+//!
 //! Where the reduced motion is two equal halves `T T`, the motion is one
 //! born at `T`'s period doubling (its second half's stick or excursion
 //! touching there too) and the reduced system is singular (`T T` has a
@@ -36,13 +41,14 @@ use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{MappingInfo, MappingKind, Model, ParamSet};
 use crate::orbit::admissible::{early_end, ViolationKind, SAME_EVENT};
 use crate::orbit::extrema::SegmentFlow;
+use crate::orbit::periodic::PeriodicSolver;
 use crate::orbit::structure::Structure;
 
 use super::extended::Extended;
-use super::start::{system, to_point};
+use super::start::{system, to_point, unknowns, START_REACH};
 use super::stop::PAIR_ITERATIONS;
 use super::trace::{Sample, Tracer, HOLDS_TO};
-use super::Condition;
+use super::{Condition, CurvePoint, Plane};
 
 /// An excursion shorter than this (in `W t`) may be shrinking to nothing
 /// (where the curve cannot go on, which is what this is tried for). One
@@ -114,6 +120,160 @@ fn excursions<M: Model>(steps: &[usize], shift: f64, x: &[f64]) -> Vec<Excursion
     }
     out.sort_by(|a, b| a.0.total_cmp(&b.0));
     out.into_iter().map(|(_, e)| e).collect()
+}
+
+/// Whether `condition` (a margin of segment `segment`) measures the
+/// excursion `e` of a structure of `m` mappings shrinking to nothing: the
+/// excursion's duration, departure or arrival, its contact with its own
+/// boundary, or the force criterion at its arrival.
+fn shrinks(condition: Condition, e: &Excursion, m: usize) -> bool {
+    let Condition::Margin {
+        kind,
+        segment,
+        boundary,
+    } = condition
+    else {
+        return false;
+    };
+    (segment + m - e.before) % m == 1
+        && match kind {
+            ViolationKind::Duration
+            | ViolationKind::Departure
+            | ViolationKind::Arrival
+            | ViolationKind::StickOnset
+            | ViolationKind::Pass => true,
+            ViolationKind::Interior => boundary == Some(e.boundary),
+            ViolationKind::StickEnd | ViolationKind::Other => false,
+        }
+}
+
+/// The switching points of a reduced motion `T T … T` repeat `T`'s when
+/// they agree turn by turn to this (relative to the motion's length scale,
+/// and radians once the turn's phase is taken off): the corrector's
+/// tolerance, with room.
+const REPEATS: f64 = 1e-7;
+
+/// The start of a curve on the reduced motion ([`reduced_start`]).
+#[derive(Clone, Debug)]
+pub struct ReducedStart {
+    /// The reduced structure: the excursion and the segment after it
+    /// dropped, the segment before it replaced by the merged one (the
+    /// others in the motion's order); `T` where that is two equal halves
+    /// `T T`.
+    pub structure: Structure,
+    /// The start, on the curve, on the line through the original start
+    /// with the parameter `fixed` held.
+    pub point: CurvePoint,
+    /// The merged segment touching the excursion's boundary: a stick's
+    /// `Fnf` extremum on `±as` (`StickEnd`), a flow's velocity extremum on
+    /// it (`Interior`).
+    pub condition: Condition,
+}
+
+/// A transition located on a branch of `structure` at `start` where one of
+/// its excursions shrinks to nothing (`condition` that excursion's
+/// duration, departure or arrival, its contact with its own boundary, or
+/// the force criterion at its arrival; the excursion shorter than
+/// [`SHORT`]), carried to the reduced motion (see the module): the start of
+/// the curve on which the merged segment touches the boundary, solved with
+/// the plane's parameter `fixed` held (0: `x`, 1: `y`) to `tolerance`.
+///
+/// The motion's own system is singular at such a point (its excursion's
+/// arrival equation has a double root), and a sweep locates the point only
+/// to the square root of its tolerance: on `stribeck8` (`as = ak`: the
+/// excursion leaves its stick with no acceleration) the excursions at the
+/// located transitions still last 1.1e-3…1.3e-3 rad, and no corrector
+/// converges from them; the reduced motion's equations are regular there.
+/// `None` if `condition` is no such excursion's, or if the reduced solve
+/// does not converge within [`START_REACH`] of the box from `start` (the
+/// transition is then something else, an excursion arriving tangentially).
+pub fn reduced_start<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: &Structure,
+    start: &CurvePoint,
+    condition: Condition,
+    fixed: usize,
+    tolerance: f64,
+) -> Option<ReducedStart> {
+    let steps = structure.steps();
+    let m = steps.len();
+    if start.points.len() != m {
+        return None;
+    }
+    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let x = unknowns(start);
+    let e = excursions::<M>(steps, shift, &x)
+        .into_iter()
+        .find(|e| shrinks(condition, e, m))?;
+    let (k, after) = ((e.before + 1) % m, (e.before + 2) % m);
+    let mut reduced = Vec::with_capacity(m - 2);
+    let mut points = Vec::with_capacity(m - 2);
+    let mut merged = 0;
+    for j in (0..m).filter(|&j| j != k && j != after) {
+        if j == e.before {
+            merged = reduced.len();
+        }
+        reduced.push(if j == e.before { e.merged } else { steps[j] });
+        points.push(start.points[j]);
+    }
+    let periods = structure.periods();
+    let structure = Structure::from_indices(M::INFO, &reduced, periods).ok()?;
+    let touch = |segment: usize| Condition::Margin {
+        kind: if e.stick {
+            ViolationKind::StickEnd
+        } else {
+            ViolationKind::Interior
+        },
+        segment,
+        boundary: Some(e.boundary),
+    };
+    let guess = CurvePoint {
+        points,
+        ..start.clone()
+    };
+    let mut sys = system::<M>(base, plane, Some(&structure), &guess, touch(merged)).ok()?;
+    let anchor = unknowns(&guess);
+    let mut y = anchor.clone();
+    let mut border = vec![0.0; y.len()];
+    sys.axis(fixed, &mut border);
+    if !matches!(
+        sys.correct(&mut y, &border, &anchor, tolerance, 40),
+        Correction::Converged { .. }
+    ) {
+        return None;
+    }
+    let n = y.len();
+    let spans = sys.spans();
+    let moved = ((y[n - 2] - start.x) / spans[0]).hypot((y[n - 1] - start.y) / spans[1]);
+    if moved > START_REACH {
+        return None;
+    }
+    // A reduced motion `T T … T` of `r` equal turns is `T`'s where its
+    // switching points repeat too: the same curve as `T`'s, named so.
+    let length = PeriodicSolver::<M>::length_scale(&sys.params(&y), &to_point(&y).points);
+    let m = reduced.len();
+    let turns = (1..=m).rev().find(|&r| {
+        m % r == 0 && periods as usize % r == 0 && {
+            let d = m / r;
+            let turn = shift / r as f64;
+            (d..m).all(|j| {
+                let (i, t) = (j % d, (j / d) as f64);
+                reduced[j] == reduced[i]
+                    && (y[2 * j] - y[2 * i]).abs() <= REPEATS * length
+                    && (y[2 * j + 1] - y[2 * i + 1] - t * turn).abs() <= REPEATS
+            })
+        }
+    })?;
+    let d = m / turns;
+    let structure = Structure::from_indices(M::INFO, &reduced[..d], periods / turns as u32).ok()?;
+    let mut y_t = y[..2 * d].to_vec();
+    y_t.extend_from_slice(&y[n - 2..]);
+    Some(ReducedStart {
+        structure,
+        point: to_point(&y_t),
+        condition: touch(merged % d),
+    })
 }
 
 /// The curve's condition carried over to the reduced structure, whose

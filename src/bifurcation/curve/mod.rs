@@ -33,7 +33,9 @@
 //!   as [`Special`] points (a fold or period-doubling curve met).
 //! * `excursion`: the end of a curve whose motion loses an excursion (a
 //!   segment from a boundary back to it, shrinking to nothing), solved on
-//!   the reduced motion, where the merged segment touches the boundary.
+//!   the reduced motion, where the merged segment touches the boundary;
+//!   and [`reduced_start`], a transition located where an excursion
+//!   shrinks to nothing carried to the reduced motion's curve.
 //! * [`crossings`]: each crossing of a line solved with the line's
 //!   parameter fixed.
 //! * [`condition_at_transition`]: the condition to trace from a transition
@@ -50,6 +52,7 @@ mod trace;
 
 pub use condition::condition_scale;
 pub use crossing::crossings;
+pub use excursion::{reduced_start, ReducedStart};
 pub use extended::Extended;
 pub use start::{
     codim2_residual, condition_at_transition, condition_value, system, trace, unknowns,

@@ -21,7 +21,7 @@ const VANISHING: f64 = 1e-3;
 
 /// How far (in the plane, each parameter over its span) the corrected start
 /// of a curve may lie from the transition it is started at.
-const START_REACH: f64 = 1e-4;
+pub(super) const START_REACH: f64 = 1e-4;
 
 /// The unknowns `(x_0, W t_0, …, λx, λy)` of a curve point.
 pub fn unknowns(point: &CurvePoint) -> Vec<f64> {

@@ -19,8 +19,10 @@
 //! lines and away from every line and curve is not found.
 
 use crate::bifurcation::curve::{
-    codim2_residual, crossings, trace, Curve, CurveEnd, CurveEndReason, Line, Plane,
+    codim2_residual, crossings, reduced_start, trace, Condition, Curve, CurveEnd, CurveEndReason,
+    Line, Plane,
 };
+use crate::bifurcation::transition_kind;
 use crate::model::Model;
 use crate::orbit::structure::Structure;
 use crate::study::sweep::SweepOptions;
@@ -155,31 +157,81 @@ impl<'a, M: Model> Cover<'a, M> {
         }
     }
 
-    /// Trace every start no traced curve passes.
+    /// Trace every start no traced curve passes. A start whose trace fails
+    /// at an excursion of its motion shrinking to nothing is carried to
+    /// the reduced motion ([`reduced_start`]): the transition is that
+    /// motion's, where its own system is regular; it is no missing curve
+    /// if that motion's curve is traced (from there, or already).
     fn trace_new(&mut self, starts: &[Start]) {
         let max = self.settings.max_mappings;
         for start in starts.iter().filter(|s| traceable(s, max)) {
             if self.on_curve(start) {
                 continue;
             }
-            match trace::<M>(
-                self.base,
-                &self.plane,
-                start.structure.as_ref(),
-                &start.point,
-                start.condition,
-                &self.settings.curve,
-            ) {
-                Ok(curve) if !curve.points.is_empty() => match stuck(&self.plane, &curve) {
-                    Some(why) => self.failed.push((start.clone(), why)),
-                    None => self.curves.push(curve),
+            let why = match self.trace_start(start) {
+                Ok(curve) => {
+                    self.curves.push(curve);
+                    continue;
+                }
+                Err(why) => why,
+            };
+            match self.reduced(start) {
+                Some(r) if self.on_curve(&r) => {}
+                Some(r) => match self.trace_start(&r) {
+                    Ok(curve) => self.curves.push(curve),
+                    Err(_) => self.failed.push((start.clone(), why)),
                 },
-                Ok(_) => self
-                    .failed
-                    .push((start.clone(), "the curve has no point".into())),
-                Err(e) => self.failed.push((start.clone(), e.to_string())),
+                None => self.failed.push((start.clone(), why)),
             }
         }
+    }
+
+    /// The curve through `start`, or why none.
+    fn trace_start(&self, start: &Start) -> Result<Curve, String> {
+        match trace::<M>(
+            self.base,
+            &self.plane,
+            start.structure.as_ref(),
+            &start.point,
+            start.condition,
+            &self.settings.curve,
+        ) {
+            Ok(curve) if !curve.points.is_empty() => match stuck(&self.plane, &curve) {
+                Some(why) => Err(why),
+                None => Ok(curve),
+            },
+            Ok(_) => Err("the curve has no point".into()),
+            Err(e) => Err(e.to_string()),
+        }
+    }
+
+    /// `start` carried to the reduced motion where an excursion of its
+    /// motion shrinks to nothing ([`reduced_start`]), on its line.
+    fn reduced(&self, start: &Start) -> Option<Start> {
+        let fixed = match start.line {
+            Line::Y(_) => 1,
+            Line::X(_) => 0,
+        };
+        let r = reduced_start::<M>(
+            self.base,
+            &self.plane,
+            start.structure.as_ref()?,
+            &start.point,
+            start.condition,
+            fixed,
+            self.settings.curve.tolerance,
+        )?;
+        let Condition::Margin { kind, boundary, .. } = r.condition else {
+            return None;
+        };
+        Some(Start {
+            kind: transition_kind(kind),
+            boundary,
+            structure: Some(r.structure),
+            condition: r.condition,
+            point: r.point,
+            line: start.line,
+        })
     }
 
     /// Sweep along `line` (once) and trace every transition found there

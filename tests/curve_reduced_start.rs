@@ -1,0 +1,182 @@
+//! A transition where an excursion between two sticks shrinks to nothing
+//! starts the reduced motion's curve.
+//!
+//! On `stribeck8` (`as = ak`: a stick's exit leaves with no acceleration) a
+//! sweep along Q0 at W = 2.375 ends the branch of
+//! `P_{7_76 6_65 5_51 0_11 1_11 0_11 5_15 6_56 7_67 8_77}` at a grazing on
+//! Sigma1, where its excursion `1_11` between the two sticks shrinks to
+//! nothing and the motion becomes the reduced one, `P_{7_76 6_65 5_51 0_11
+//! 5_15 6_56 7_67 8_77}`, whose stick touches `as` there (the same sweep
+//! ends that branch there as a stick vanishing). The split motion's own
+//! system is singular at that point and the sweep locates it only to the
+//! square root of its tolerance (the excursion still lasts about 1e-3 rad),
+//! so no corrector converges from it: until stop 40 every such start was a
+//! failed start (30 of `stribeck8` W = 0.5…3 × Q0 = 1…12, 35 of
+//! `stribeck::pl4`'s).
+//!
+//! 1. `reduced_start` carries the transition to the reduced motion: the
+//!    structure the sweep names beyond it, the merged stick's smooth margin,
+//!    on the sweep's line (W held exactly), within 1e-8 in Q0 of where the
+//!    sweep ends the reduced branch on its own (a regular location); there
+//!    `PeriodicSolver` re-solves the reduced motion to the same points and
+//!    the stick's margin is zero. A condition of the excursion that is not
+//!    its vanishing (a contact with another boundary) is not carried.
+//! 2. A run over a small box around it has no failed start and one
+//!    stick-vanishing curve of the reduced motion (the carried start is not
+//!    traced a second time).
+
+use stickslip::bifurcation::curve::{
+    condition_at_transition, condition_scale, condition_value, reduced_start, Condition,
+    CurveOptions, CurvePoint, Line, Plane,
+};
+use stickslip::bifurcation::TransitionKind;
+use stickslip::models::stribeck8::{self, Stribeck8};
+use stickslip::orbit::admissible::ViolationKind;
+use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use stickslip::orbit::structure::Structure;
+use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
+use stickslip::study::sweep::{sweep, Sweep, SweepOptions};
+use stickslip::{Model, ParamSet};
+
+const SPLIT: &str = "P_{7_76 6_65 5_51 0_11 1_11 0_11 5_15 6_56 7_67 8_77}";
+const REDUCED: &str = "P_{7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77}";
+const W: f64 = 2.375;
+
+fn plane() -> Plane {
+    Plane {
+        x: stribeck8::Params::index_of("W").unwrap(),
+        y: stribeck8::Params::index_of("Q0").unwrap(),
+        x_range: [2.3, 2.45],
+        y_range: [5.0, 5.4],
+    }
+}
+
+fn at(w: f64, q: f64) -> stribeck8::Params {
+    stribeck8::Params {
+        W: w,
+        Q0: q,
+        ..stribeck8::Params::default()
+    }
+}
+
+/// The ends of the branches of `structure` that the sweep `s` names
+/// `reason`, with the switching points there, each phase (kept mod 2π by
+/// the sweep, for the figures) made to increase along the cycle.
+fn ends(s: &Sweep, structure: &str, reason: &str) -> Vec<(f64, Vec<SwitchingPoint>)> {
+    let mut out = Vec::new();
+    for b in s.branches.iter().filter(|b| b.structure == structure) {
+        for e in b.ends.iter().filter(|e| e.reason == reason) {
+            let sample = b
+                .points
+                .iter()
+                .find(|p| p.value == e.value)
+                .expect("the branch's sample at its end");
+            let mut pts = sample.points.clone();
+            for k in 1..pts.len() {
+                while pts[k].phase <= pts[k - 1].phase {
+                    pts[k].phase += std::f64::consts::TAU;
+                }
+            }
+            out.push((e.value, pts));
+        }
+    }
+    out
+}
+
+#[test]
+fn a_vanishing_excursion_is_carried_to_the_reduced_motion() {
+    let info = Stribeck8::INFO;
+    let boundary = |label: &str| info.boundaries.iter().position(|b| b.label == label);
+    let sigma1 = boundary("Sigma1").unwrap();
+    let s = sweep::<Stribeck8>(at(W, 5.2), "Q0", 5.15, 5.25, 20, SweepOptions::default())
+        .expect("sweep");
+    let grazing = ends(&s, SPLIT, "grazing");
+    let [(q_split, points)] = grazing.as_slice() else {
+        panic!("one grazing end of {SPLIT}: {grazing:?}");
+    };
+    let vanishing = ends(&s, REDUCED, "stick_vanishing");
+    let [(q_reduced, _)] = vanishing.as_slice() else {
+        panic!("one stick-vanishing end of {REDUCED}: {vanishing:?}");
+    };
+    let split = Structure::parse(info, SPLIT, 1).unwrap();
+    let p = at(W, *q_split);
+    let condition =
+        condition_at_transition::<Stribeck8>(&p, &split, points, TransitionKind::Grazing)
+            .expect("a condition at the grazing");
+    let start = CurvePoint {
+        x: W,
+        y: *q_split,
+        points: points.clone(),
+    };
+    let tolerance = CurveOptions::default().tolerance;
+    let base = stribeck8::Params::default();
+    let r = reduced_start::<Stribeck8>(&base, &plane(), &split, &start, condition, 0, tolerance)
+        .expect("the grazing is the excursion's vanishing");
+    assert_eq!(r.structure.notation(info), REDUCED);
+    assert_eq!(
+        r.condition,
+        Condition::Margin {
+            kind: ViolationKind::StickEnd,
+            // The stick `0_11`: fifth applied (the notation reads right to left).
+            segment: 4,
+            boundary: Some(sigma1),
+        }
+    );
+    assert_eq!(r.point.x, W, "on the sweep's line");
+    assert!(
+        (r.point.y - q_reduced).abs() <= 1e-8,
+        "Q0 {} against the reduced branch's end at {q_reduced}",
+        r.point.y
+    );
+    // Independently: the reduced motion re-solved there has the same
+    // switching points, and its stick's margin vanishes.
+    let p = at(W, r.point.y);
+    let mut solved = r.point.points.clone();
+    let mut solver = PeriodicSolver::<Stribeck8>::new(r.structure.clone());
+    let done = solver.solve(&p, &mut solved, NewtonOptions::default());
+    assert!(done.converged(), "{done:?}");
+    for (a, b) in solved.iter().zip(&r.point.points) {
+        assert!((a.x - b.x).abs() <= 1e-9 && (a.phase - b.phase).abs() <= 1e-9);
+    }
+    let here = CurvePoint {
+        points: solved,
+        ..r.point.clone()
+    };
+    let v = condition_value::<Stribeck8>(&base, &plane(), Some(&r.structure), &here, r.condition)
+        .expect("the margin");
+    let scale = condition_scale::<Stribeck8>(&p, r.condition, Some(&r.structure), &here.points);
+    assert!(v.abs() <= 1e-10 * scale, "margin {v:e} of {scale:e}");
+    // The excursion's contact with another boundary is no vanishing.
+    let other = Condition::Margin {
+        kind: ViolationKind::Interior,
+        segment: 5,
+        boundary: boundary("Sigma2"),
+    };
+    assert!(
+        reduced_start::<Stribeck8>(&base, &plane(), &split, &start, other, 0, tolerance).is_none()
+    );
+}
+
+#[test]
+fn a_run_across_the_vanishing_excursion_has_no_failed_start() {
+    let opts = CurvesOptions {
+        x: ("W".into(), plane().x_range),
+        y: ("Q0".into(), plane().y_range),
+        seeds: vec![Line::X(W)],
+        at: Vec::new(),
+    };
+    let settings = CurvesSettings {
+        spread: 0,
+        edges: false,
+        ..CurvesSettings::default()
+    };
+    let set = curves_with::<Stribeck8>(&stribeck8::Params::default(), &opts, &settings)
+        .expect("the run runs");
+    assert!(set.failed_starts.is_empty(), "{:#?}", set.failed_starts);
+    let reduced = set
+        .curves
+        .iter()
+        .filter(|c| c.kind == TransitionKind::StickVanishing && c.structure == REDUCED)
+        .count();
+    assert_eq!(reduced, 1, "one stick-vanishing curve of {REDUCED}");
+}
