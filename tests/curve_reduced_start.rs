@@ -10,9 +10,9 @@
 //! ends that branch there as a stick vanishing). The split motion's own
 //! system is singular at that point and the sweep locates it only to the
 //! square root of its tolerance (the excursion still lasts about 1e-3 rad),
-//! so no corrector converges from it: until stop 40 every such start was a
-//! failed start (30 of `stribeck8` W = 0.5…3 × Q0 = 1…12, 35 of
-//! `stribeck::pl4`'s).
+//! so no corrector converges from it: until stop 40 every such start was
+//! reported as a failed start (30 of `stribeck8` W = 0.5…3 × Q0 = 1…12,
+//! 35 of `stribeck::pl4`'s).
 //!
 //! 1. `reduced_start` carries the transition to the reduced motion: the
 //!    structure the sweep names beyond it, the merged stick's smooth margin,
@@ -21,9 +21,10 @@
 //!    `PeriodicSolver` re-solves the reduced motion to the same points and
 //!    the stick's margin is zero. A condition of the excursion that is not
 //!    its vanishing (a contact with another boundary) is not carried.
-//! 2. A run over a small box around it has no failed start and one
-//!    stick-vanishing curve of the reduced motion (the carried start is not
-//!    traced a second time).
+//! 2. A run over a small box around it has no failed start (20 before
+//!    stop 40: the split motion's starts fail, and the reduced motion's
+//!    curve, traced from its own transition, passes there) and one
+//!    stick-vanishing curve of the reduced motion.
 
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, condition_value, reduced_start, Condition,

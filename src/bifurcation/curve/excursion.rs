@@ -15,8 +15,8 @@
 //!
 //! A sweep that ends a branch where an excursion shrinks to nothing gives
 //! a start on the same degenerate point: [`reduced_start`] carries it to the
-//! reduced motion, whose curve it is (`study::curves` does so where the
-//! motion's own curve cannot start).
+//! reduced motion, whose curve it is (`study::curves` reports no failed
+//! start where the motion's own curve cannot start and that one is traced).
 //!
 //! Where the reduced motion is two equal halves `T T`, the motion is one
 //! born at `T`'s period doubling (its second half's stick or excursion

@@ -157,31 +157,16 @@ impl<'a, M: Model> Cover<'a, M> {
         }
     }
 
-    /// Trace every start no traced curve passes. A start whose trace fails
-    /// at an excursion of its motion shrinking to nothing is carried to
-    /// the reduced motion ([`reduced_start`]): the transition is that
-    /// motion's, where its own system is regular; it is no missing curve
-    /// if that motion's curve is traced (from there, or already).
+    /// Trace every start no traced curve passes.
     fn trace_new(&mut self, starts: &[Start]) {
         let max = self.settings.max_mappings;
         for start in starts.iter().filter(|s| traceable(s, max)) {
             if self.on_curve(start) {
                 continue;
             }
-            let why = match self.trace_start(start) {
-                Ok(curve) => {
-                    self.curves.push(curve);
-                    continue;
-                }
-                Err(why) => why,
-            };
-            match self.reduced(start) {
-                Some(r) if self.on_curve(&r) => {}
-                Some(r) => match self.trace_start(&r) {
-                    Ok(curve) => self.curves.push(curve),
-                    Err(_) => self.failed.push((start.clone(), why)),
-                },
-                None => self.failed.push((start.clone(), why)),
+            match self.trace_start(start) {
+                Ok(curve) => self.curves.push(curve),
+                Err(why) => self.failed.push((start.clone(), why)),
             }
         }
     }
@@ -478,11 +463,16 @@ impl<'a, M: Model> Cover<'a, M> {
     /// The curves in a stable order, their codim-2 points and `--at` crossings.
     pub fn finish(self, opts: &CurvesOptions) -> (CurveSet, Vec<Curve>) {
         // A failed start that a curve traced from elsewhere passes is no
-        // missing curve.
+        // missing curve; nor is one where an excursion of its motion
+        // shrinks to nothing, if the reduced motion's curve passes there
+        // ([`reduced_start`]: the transition is that motion's, where its
+        // own system is regular).
         let failed_starts = self
             .failed
             .iter()
-            .filter(|(start, _)| !self.on_curve(start))
+            .filter(|(start, _)| {
+                !self.on_curve(start) && !self.reduced(start).is_some_and(|r| self.on_curve(&r))
+            })
             .map(|(start, why)| FailedStart {
                 kind: start.kind,
                 boundary: start
