@@ -25,6 +25,16 @@
 //!    stop 40: the split motion's starts fail, and the reduced motion's
 //!    curve, traced from its own transition, passes there) and one
 //!    stick-vanishing curve of the reduced motion.
+//! 3. Where the reduced motion's curve is found by no line, it is traced
+//!    from the carried start, after the lines: on W = 0.95…1.02 × Q0 =
+//!    4.4…5.0 the passable onsets of the period-2 `T'T` (`T` = `7_76 6_65
+//!    5_51 0_11 5_15 6_56 7_67 8_77`, `T'` with its stick split by `5_11`)
+//!    carry to a period-2 `T T` whose halves differ, not `T` twice: its
+//!    stick-vanishing curve, re-solved by `PeriodicSolver` at its points,
+//!    has halves apart by more than 1e-6 (over the middle half of the
+//!    curve: it ends where they meet, at `T`'s period doubling) and the
+//!    margin zero to 1e-10 of its scale. The curves the run found before are all still found
+//!    (traced as soon as the start failed, that curve cost four of them).
 
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, condition_value, reduced_start, Condition,
@@ -180,4 +190,75 @@ fn a_run_across_the_vanishing_excursion_has_no_failed_start() {
         .filter(|c| c.kind == TransitionKind::StickVanishing && c.structure == REDUCED)
         .count();
     assert_eq!(reduced, 1, "one stick-vanishing curve of {REDUCED}");
+}
+
+const T: &str = "P_{7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77}";
+
+#[test]
+fn a_reduced_motion_no_line_finds_is_traced_from_the_carried_start() {
+    use stickslip::study::curves::traced;
+    let base = stribeck8::Params::default();
+    let info = Stribeck8::INFO;
+    let opts = CurvesOptions {
+        x: ("W".into(), [0.95, 1.02]),
+        y: ("Q0".into(), [4.4, 5.0]),
+        seeds: Vec::new(),
+        at: Vec::new(),
+    };
+    let (set, curves) = traced::<Stribeck8>(&base, &opts, &CurvesSettings::default()).unwrap();
+    let plane = opts.plane::<Stribeck8>(&base).unwrap();
+    assert!(set.failed_starts.is_empty(), "{:#?}", set.failed_starts);
+    let name = |c: &stickslip::bifurcation::curve::Curve| {
+        c.structure
+            .as_ref()
+            .map(|s| (s.notation(info), s.periods()))
+    };
+    // Found by the lines (stop 39's run found these ten, and nothing else).
+    let kinds: Vec<(TransitionKind, Option<(String, u32)>)> =
+        curves.iter().map(|c| (c.kind, name(c))).collect();
+    let inner = &T[3..T.len() - 1];
+    let tt = format!("P_{{{inner} {inner}}}");
+    for (kind, structure, periods) in [
+        (TransitionKind::StickVanishing, T, 1),
+        (TransitionKind::Grazing, T, 1),
+        (TransitionKind::PeriodDoubling, T, 1),
+        (
+            TransitionKind::Fold,
+            "P_{7_76 6_65 5_51 0_11 5_11 0_11 5_15 6_56 7_67 8_77}",
+            1,
+        ),
+        (TransitionKind::StickVanishing, tt.as_str(), 2),
+    ] {
+        assert!(
+            kinds.contains(&(kind, Some((structure.to_string(), periods)))),
+            "{kind:?} of {structure}^{periods} in {kinds:#?}"
+        );
+    }
+    assert_eq!(curves.len(), 11, "{kinds:#?}");
+    // The period-2 motion's curve: its halves differ, its stick touches.
+    let c = curves
+        .iter()
+        .find(|c| c.kind == TransitionKind::StickVanishing && name(c).is_some_and(|n| n.1 == 2))
+        .unwrap();
+    let s = c.structure.as_ref().unwrap();
+    let h = s.len() / 2;
+    // (At its end at `T`'s period doubling the halves meet: the middle half
+    // of the curve.)
+    let n = c.points.len();
+    for q in c.points[n / 4..3 * n / 4].iter().step_by(5) {
+        let p = at(q.x, q.y);
+        let mut pts = q.points.clone();
+        let mut solver = PeriodicSolver::<Stribeck8>::new(s.clone());
+        let done = solver.solve(&p, &mut pts, NewtonOptions::default());
+        assert!(done.converged(), "{done:?}");
+        let apart = (0..h).fold(0.0f64, |m, j| m.max((pts[j + h].x - pts[j].x).abs()));
+        assert!(apart > 1e-6, "halves {apart:e} apart at ({}, {})", q.x, q.y);
+        let here = CurvePoint {
+            points: pts,
+            ..q.clone()
+        };
+        let v = condition_value::<Stribeck8>(&base, &plane, Some(s), &here, c.condition).unwrap();
+        let scale = condition_scale::<Stribeck8>(&p, c.condition, Some(s), &here.points);
+        assert!(v.abs() <= 1e-10 * scale, "margin {v:e} of {scale:e}");
+    }
 }

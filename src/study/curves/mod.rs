@@ -293,5 +293,6 @@ pub fn traced<M: Model>(
     cover.missing();
     cover.refine();
     cover.probe();
+    cover.carry();
     Ok(cover.finish(opts))
 }
