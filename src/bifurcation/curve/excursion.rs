@@ -173,8 +173,9 @@ pub struct ReducedStart {
 /// A transition located on a branch of `structure` at `start` where one of
 /// its excursions shrinks to nothing (`condition` that excursion's
 /// duration, departure or arrival, its contact with its own boundary, or
-/// the force criterion at its arrival; the excursion shorter than
-/// [`SHORT`]), carried to the reduced motion (see the module): the start of
+/// the force criterion at its arrival; the excursion shorter than 0.1
+/// in `W t`), carried to the reduced motion (the excursion removed, its two
+/// neighbours merged into one segment): the start of
 /// the curve on which the merged segment touches the boundary, solved with
 /// the plane's parameter `fixed` held (0: `x`, 1: `y`) to `tolerance`.
 ///
@@ -185,7 +186,7 @@ pub struct ReducedStart {
 /// located transitions still last 1.1e-3…1.3e-3 rad, and no corrector
 /// converges from them; the reduced motion's equations are regular there.
 /// `None` if `condition` is no such excursion's, or if the reduced solve
-/// does not converge within [`START_REACH`] of the box from `start` (the
+/// does not converge within 1e-4 of the box from `start` (the
 /// transition is then something else, an excursion arriving tangentially).
 pub fn reduced_start<M: Model>(
     base: &M::Params,
