@@ -36,6 +36,9 @@
 //!    margin zero to 1e-10 of its scale. The curves the run found before are all still found
 //!    (traced as soon as the start failed, that curve cost four of them).
 
+mod common;
+
+use common::sweep_ends::branch_ends;
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, condition_value, reduced_start, Condition,
     CurveOptions, CurvePoint, Line, Plane,
@@ -43,10 +46,10 @@ use stickslip::bifurcation::curve::{
 use stickslip::bifurcation::TransitionKind;
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::ViolationKind;
-use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
+use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
-use stickslip::study::sweep::{sweep, Sweep, SweepOptions};
+use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::{Model, ParamSet};
 
 const SPLIT: &str = "P_{7_76 6_65 5_51 0_11 1_11 0_11 5_15 6_56 7_67 8_77}";
@@ -70,30 +73,6 @@ fn at(w: f64, q: f64) -> stribeck8::Params {
     }
 }
 
-/// The ends of the branches of `structure` that the sweep `s` names
-/// `reason`, with the switching points there, each phase (kept mod 2π by
-/// the sweep, for the figures) made to increase along the cycle.
-fn ends(s: &Sweep, structure: &str, reason: &str) -> Vec<(f64, Vec<SwitchingPoint>)> {
-    let mut out = Vec::new();
-    for b in s.branches.iter().filter(|b| b.structure == structure) {
-        for e in b.ends.iter().filter(|e| e.reason == reason) {
-            let sample = b
-                .points
-                .iter()
-                .find(|p| p.value == e.value)
-                .expect("the branch's sample at its end");
-            let mut pts = sample.points.clone();
-            for k in 1..pts.len() {
-                while pts[k].phase <= pts[k - 1].phase {
-                    pts[k].phase += std::f64::consts::TAU;
-                }
-            }
-            out.push((e.value, pts));
-        }
-    }
-    out
-}
-
 #[test]
 fn a_vanishing_excursion_is_carried_to_the_reduced_motion() {
     let info = Stribeck8::INFO;
@@ -101,11 +80,11 @@ fn a_vanishing_excursion_is_carried_to_the_reduced_motion() {
     let sigma1 = boundary("Sigma1").unwrap();
     let s = sweep::<Stribeck8>(at(W, 5.2), "Q0", 5.15, 5.25, 20, SweepOptions::default())
         .expect("sweep");
-    let grazing = ends(&s, SPLIT, "grazing");
+    let grazing = branch_ends(&s, SPLIT, "grazing");
     let [(q_split, points)] = grazing.as_slice() else {
         panic!("one grazing end of {SPLIT}: {grazing:?}");
     };
-    let vanishing = ends(&s, REDUCED, "stick_vanishing");
+    let vanishing = branch_ends(&s, REDUCED, "stick_vanishing");
     let [(q_reduced, _)] = vanishing.as_slice() else {
         panic!("one stick-vanishing end of {REDUCED}: {vanishing:?}");
     };

@@ -17,6 +17,8 @@
 
 mod common;
 
+use common::sweep_ends::branch_ends;
+
 use stickslip::bifurcation::curve::{
     condition_at_transition, condition_scale, crossings, trace, Condition, Curve, CurveOptions,
     CurvePoint, Line, Plane,
@@ -26,7 +28,7 @@ use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
-use stickslip::study::sweep::{sweep, Sweep, SweepOptions};
+use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::{Model, ParamSet};
 
 const STRUCTURE: &str = "P_{3_31 0_11 1_11 3_13 4_33}";
@@ -54,35 +56,10 @@ fn sweep_at(q: f64) -> stickslip::study::sweep::Sweep {
     sweep::<Paper>(at(2.75, q), "W", lo, hi, 60, SweepOptions::default()).expect("sweep")
 }
 
-/// The ends of the branches of `structure` that the sweep `s` names
-/// `stick_vanishing`, with the switching points there: each phase as the
-/// sweep keeps it (mod 2π, for the figures), made to increase along the
-/// cycle.
-fn vanishing_ends(structure: &str, s: &Sweep) -> Vec<(f64, Vec<SwitchingPoint>)> {
-    let mut out = Vec::new();
-    for b in s.branches.iter().filter(|b| b.structure == structure) {
-        for e in b.ends.iter().filter(|e| e.reason == "stick_vanishing") {
-            let sample = b
-                .points
-                .iter()
-                .find(|p| p.value == e.value)
-                .expect("the branch's sample at its end");
-            let mut pts = sample.points.clone();
-            for k in 1..pts.len() {
-                while pts[k].phase <= pts[k - 1].phase {
-                    pts[k].phase += std::f64::consts::TAU;
-                }
-            }
-            out.push((e.value, pts));
-        }
-    }
-    out
-}
-
 /// The ends of the branches of [`STRUCTURE`] that the sweep at `q` names
 /// `stick_vanishing`, with the switching points there.
 fn stick_ends(q: f64) -> Vec<(f64, Vec<SwitchingPoint>)> {
-    vanishing_ends(STRUCTURE, &sweep_at(q))
+    branch_ends(&sweep_at(q), STRUCTURE, "stick_vanishing")
 }
 
 /// The start and the arrival of mapping `k` of `structure` at `points`
@@ -443,7 +420,7 @@ fn a_stick_whose_exit_turns_tangential_vanishes_on_a_traced_curve() {
             SweepOptions::default(),
         )
         .expect("sweep");
-        vanishing_ends(DOUBLE, &s)
+        branch_ends(&s, DOUBLE, "stick_vanishing")
     };
     // The branch's lower end at Q0 = 205.
     let ends = branch_ends(205.0, 2.6919);

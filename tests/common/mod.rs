@@ -20,6 +20,7 @@
 //! * `shaw`: Shaw's oscillator and the box the curves tests run on it.
 //! * `cycle`: the mapping equations of a cycle of mappings at its switching
 //!   points (a motion built by hand).
+//! * `sweep_ends`: a sweep's branch ends as curve starts (phases unwrapped).
 #![allow(dead_code)]
 
 pub mod counting;
@@ -31,6 +32,7 @@ pub mod reference;
 pub mod resimulate;
 pub mod roots;
 pub mod shaw;
+pub mod sweep_ends;
 pub mod taylor;
 
 use rand::rngs::StdRng;

@@ -71,6 +71,23 @@ struct Excursion {
     stick: bool,
 }
 
+impl Excursion {
+    /// The merged segment (`segment` of the reduced structure) touching
+    /// the excursion's boundary: a stick's `Fnf` extremum on `±as`
+    /// (`StickEnd`), a flow's velocity extremum on it (`Interior`).
+    fn touch(&self, segment: usize) -> Condition {
+        Condition::Margin {
+            kind: if self.stick {
+                ViolationKind::StickEnd
+            } else {
+                ViolationKind::Interior
+            },
+            segment,
+            boundary: Some(self.boundary),
+        }
+    }
+}
+
 /// The excursions of `steps` shorter than [`SHORT`] at `x`, shortest first.
 fn excursions<M: Model>(steps: &[usize], shift: f64, x: &[f64]) -> Vec<Excursion> {
     let m = steps.len();
@@ -220,20 +237,11 @@ pub fn reduced_start<M: Model>(
     }
     let periods = structure.periods();
     let structure = Structure::from_indices(M::INFO, &reduced, periods).ok()?;
-    let touch = |segment: usize| Condition::Margin {
-        kind: if e.stick {
-            ViolationKind::StickEnd
-        } else {
-            ViolationKind::Interior
-        },
-        segment,
-        boundary: Some(e.boundary),
-    };
     let guess = CurvePoint {
         points,
         ..start.clone()
     };
-    let mut sys = system::<M>(base, plane, Some(&structure), &guess, touch(merged)).ok()?;
+    let mut sys = system::<M>(base, plane, Some(&structure), &guess, e.touch(merged)).ok()?;
     let anchor = unknowns(&guess);
     let mut y = anchor.clone();
     let mut border = vec![0.0; y.len()];
@@ -273,7 +281,7 @@ pub fn reduced_start<M: Model>(
     Some(ReducedStart {
         structure,
         point: to_point(&y_t),
-        condition: touch(merged % d),
+        condition: e.touch(merged % d),
     })
 }
 
@@ -347,17 +355,8 @@ impl<M: Model> Tracer<'_, M> {
             y.extend([xi, pi]);
         }
         y.extend([prev.x[n - 2], prev.x[n - 1]]);
-        // The merged segment touches the boundary: a flow's velocity
-        // extremum on it, a stick's `Fnf` extremum on `±as`.
-        let touch = Condition::Margin {
-            kind: if e.stick {
-                ViolationKind::StickEnd
-            } else {
-                ViolationKind::Interior
-            },
-            segment: 0,
-            boundary: Some(e.boundary),
-        };
+        // The merged segment touches the boundary.
+        let touch = e.touch(0);
         let structure = Structure::from_indices(M::INFO, &reduced_steps, periods).ok()?;
         let y = match self.solve_on(prev, bound, &structure, y.clone(), own, touch) {
             Some(y) => y,

@@ -381,22 +381,24 @@ impl<'a, M: Model> Cover<'a, M> {
     /// lines the run sweeps: traced as soon as its start failed, on
     /// `stribeck8` W = 0.95…1.02 × Q0 = 4.4…5.0 it explained the band whose
     /// unexplained motion makes the run add four refinement lines, and the
-    /// four curves those lines find went unfound.
+    /// four curves those lines find went unfound. A failed start whose
+    /// reduced motion's curve is traced (from there, or already) is no
+    /// missing curve: it leaves the failed list.
     pub fn carry(&mut self) {
-        let failed: Vec<Start> = self.failed.iter().map(|(s, _)| s.clone()).collect();
-        for start in &failed {
-            if self.on_curve(start) {
-                continue;
+        let failed = std::mem::take(&mut self.failed);
+        for (start, why) in failed {
+            if !self.on_curve(&start) {
+                if let Some(r) = self.reduced(&start) {
+                    if self.on_curve(&r) {
+                        continue;
+                    }
+                    if let Ok(curve) = self.trace_start(&r) {
+                        self.curves.push(curve);
+                        continue;
+                    }
+                }
             }
-            let Some(r) = self.reduced(start) else {
-                continue;
-            };
-            if self.on_curve(&r) {
-                continue;
-            }
-            if let Ok(curve) = self.trace_start(&r) {
-                self.curves.push(curve);
-            }
+            self.failed.push((start, why));
         }
     }
 
@@ -492,16 +494,12 @@ impl<'a, M: Model> Cover<'a, M> {
     /// The curves in a stable order, their codim-2 points and `--at` crossings.
     pub fn finish(self, opts: &CurvesOptions) -> (CurveSet, Vec<Curve>) {
         // A failed start that a curve traced from elsewhere passes is no
-        // missing curve; nor is one where an excursion of its motion
-        // shrinks to nothing, if the reduced motion's curve passes there
-        // ([`reduced_start`]: the transition is that motion's, where its
-        // own system is regular).
+        // missing curve (one carried to the reduced motion's curve is
+        // dropped by `carry`).
         let failed_starts = self
             .failed
             .iter()
-            .filter(|(start, _)| {
-                !self.on_curve(start) && !self.reduced(start).is_some_and(|r| self.on_curve(&r))
-            })
+            .filter(|(start, _)| !self.on_curve(start))
             .map(|(start, why)| FailedStart {
                 kind: start.kind,
                 boundary: start
