@@ -536,6 +536,11 @@ fn every_curve_point_satisfies_its_condition() {
 /// condition, the pair solved with it failed, and the end was the last
 /// trial, its passable onset holding only to 9.4e-6 of its scale. It now
 /// ends at the cascade's point W = 7.2438890, Q0 = 46.741843 (3.3e-16).
+/// Since stop 41 the run also traces, by branch switching from that end,
+/// the `^7` motion's passable-onset curve, which reaches the same point
+/// from the other side, where the motion's system turns singular: its end
+/// holds the grazing margin to 4.2e-10 of its scale; every other end to
+/// 1e-10 as before.
 #[test]
 fn every_codim2_end_of_the_window_holds_both_conditions() {
     use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
@@ -551,8 +556,15 @@ fn every_codim2_end_of_the_window_holds_both_conditions() {
     let ends = codim2_residuals::<Paper>(&base, &plane(), &curves);
     for &(i, k, v) in &ends {
         let (c, e) = (&curves[i], &curves[i].ends[k]);
+        let tolerance = if c.kind == TransitionKind::PassableOnset
+            && c.structure.as_ref().is_some_and(|s| s.len() == 24)
+        {
+            1e-9
+        } else {
+            1e-10
+        };
         assert!(
-            v <= 1e-10,
+            v <= tolerance,
             "{:?} of {:?}: the end at W = {}, Q0 = {} ({:?}) holds its second condition only to {v:e} of its scale",
             c.condition,
             c.structure.as_ref().map(|s| s.notation(Paper::INFO)),

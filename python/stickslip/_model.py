@@ -209,6 +209,7 @@ class Model:
         spread: Optional[int] = None,
         max_mappings: Optional[int] = None,
         probes: Optional[int] = None,
+        max_partners: Optional[int] = None,
         edges: bool = True,
         **fixed: Number,
     ) -> Curves:
@@ -225,7 +226,10 @@ class Model:
         ``max_mappings``: the longest motion whose transitions are traced
         (default 24; ``--max-mappings``); ``probes``: short sweeps across
         each curve at this many places, finding the bands no line crosses
-        (default 0, off; ``--probes``); ``edges``: sweep the box's four
+        (default 0, off; ``--probes``); ``max_partners``: at most this
+        many curves traced by branch switching at codimension-two points,
+        the second condition's curve through each (default 200, 0 turns it
+        off; ``--max-partners``); ``edges``: sweep the box's four
         edges too, where every curve that leaves the box crosses (default
         True; ``False`` is ``--no-edges``)."""
         data = _native.curves(
@@ -239,6 +243,7 @@ class Model:
             _count("spread", spread, 0),
             _count("max_mappings", max_mappings, 0),
             _count("probes", probes, 0),
+            _count("max_partners", max_partners, 0),
             bool(edges),
         )
         return Curves(json.loads(data))

@@ -84,6 +84,7 @@ def curves(
     spread: Optional[int] = None,
     max_mappings: Optional[int] = None,
     probes: Optional[int] = None,
+    max_partners: Optional[int] = None,
     edges: bool = True,
 ) -> str: ...
 def lyapunov(

@@ -241,6 +241,23 @@ def test_curves_probes_agree_with_the_cli(cli, paper):
         paper.curves(x=("W", 3, 4), y=("Q0", 65, 75), probes=-1)
 
 
+def test_curves_partners_agree_with_the_cli(cli, paper):
+    args = ("--x", "W=3:4", "--y", "Q0=65:75", "--count", "10", "--spread", "0", "--json")
+    theirs = json.loads(ok(cli, "curves", *args, "--max-partners", "0"))
+    box = dict(x=("W", 3, 4), y=("Q0", 65, 75), count=10, spread=0)
+    off = paper.curves(max_partners=0, **box)
+    assert off.to_dict() == theirs
+    # Branch switching at the codimension-two points adds the bands'
+    # second curves and keeps every curve the lines found.
+    on = paper.curves(**box)
+    assert on.to_dict() == json.loads(ok(cli, "curves", *args))
+    assert len(on) > len(off)
+    found = {(c["kind"], c["structure"], str(c["points"])) for c in on.to_dict()["curves"]}
+    assert all((c["kind"], c["structure"], str(c["points"])) in found for c in theirs["curves"])
+    with pytest.raises(errors.InputError, match="max_partners"):
+        paper.curves(max_partners=-1, **box)
+
+
 def test_curves_edges_agree_with_the_cli(cli, paper):
     args = ("--x", "W=3:4", "--y", "Q0=65:75", "--count", "10", "--spread", "0", "--json")
     # The edges are swept by default, on both sides.

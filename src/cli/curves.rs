@@ -72,6 +72,11 @@ pub struct CurvesArgs {
     /// default) turns them off; each costs a sweep and the curves it finds.
     #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().probes)]
     probes: usize,
+    /// Trace at most this many curves by branch switching at the
+    /// codimension-two points of the curves found (the second condition's
+    /// curve through each); 0 turns it off.
+    #[arg(long, value_name = "K", default_value_t = CurvesSettings::default().max_partners)]
+    max_partners: usize,
 }
 
 /// The curves as text or JSON, and the regime map.
@@ -145,6 +150,7 @@ impl WithModel for CurvesCmd {
             edges: !self.args.no_edges,
             max_mappings: self.args.max_mappings,
             probes: self.args.probes,
+            max_partners: self.args.max_partners,
             ..CurvesSettings::default()
         };
         let found = curves_with::<M>(&base, &opts, &settings)?;

@@ -48,12 +48,13 @@ impl Command for Curves {
 /// along the other parameter), with their crossings of the lines `at`;
 /// `count` grid values per line's sweep, `spread` extra lines each way,
 /// `max_mappings` the longest motion whose transitions are traced,
-/// `probes` the short sweeps across each curve, `edges` the box's edges
-/// swept too (default true).
+/// `probes` the short sweeps across each curve, `max_partners` the curves
+/// traced by branch switching at codimension-two points, `edges` the box's
+/// edges swept too (default true).
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None, edges = true))]
+#[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None, max_partners = None, edges = true))]
 pub fn curves(
     py: Python<'_>,
     model: &str,
@@ -66,6 +67,7 @@ pub fn curves(
     spread: Option<usize>,
     max_mappings: Option<usize>,
     probes: Option<usize>,
+    max_partners: Option<usize>,
     edges: bool,
 ) -> PyResult<String> {
     let defaults = CurvesSettings::default();
@@ -80,6 +82,7 @@ pub fn curves(
             spread: spread.unwrap_or(defaults.spread),
             max_mappings: max_mappings.unwrap_or(defaults.max_mappings),
             probes: probes.unwrap_or(defaults.probes),
+            max_partners: max_partners.unwrap_or(defaults.max_partners),
             edges,
             ..defaults
         },

@@ -278,6 +278,34 @@ impl<M: Model> Evaluator<M> {
             .extend_from_slice(&self.excluded[..self.excluded_len]);
     }
 
+    /// Watch `id` again where [`Self::exclude_companions`] left it out (it
+    /// vanished with the curve's own condition at the start, to
+    /// [`SAME_EVENT`]): the condition of the curve a branch switch started
+    /// from, small but positive at the start, a step from the
+    /// codimension-two point where it vanishes. Never the curve's own.
+    pub fn watch(&mut self, id: ConditionId) {
+        let own = match self.condition {
+            Condition::Margin {
+                kind,
+                segment,
+                boundary,
+            } => Some((kind, segment, boundary)),
+            _ => None,
+        };
+        if own == Some(id) {
+            return;
+        }
+        let mut k = 0;
+        for i in 0..self.excluded_len {
+            if self.excluded[i] != id {
+                self.excluded[k] = self.excluded[i];
+                k += 1;
+            }
+        }
+        self.excluded_len = k;
+        self.sync_excluded();
+    }
+
     fn exclude(&mut self, id: ConditionId) {
         if self.excluded_len < MAX_EXCLUDED && !self.excluded[..self.excluded_len].contains(&id) {
             self.excluded[self.excluded_len] = id;

@@ -36,6 +36,10 @@
 //!   the reduced motion, where the merged segment touches the boundary;
 //!   and [`reduced_start`], a transition located where an excursion
 //!   shrinks to nothing carried to the reduced motion's curve.
+//! * `partner`: branch switching at a codimension-two point
+//!   ([`partner_start`]): the start of the second condition's curve
+//!   through it, a step along that curve's tangent to the side where the
+//!   curve's own margin holds.
 //! * [`crossings`]: each crossing of a line solved with the line's
 //!   parameter fixed.
 //! * [`condition_at_transition`]: the condition to trace from a transition
@@ -46,6 +50,7 @@ mod crossing;
 mod excursion;
 pub mod extended;
 mod halves;
+mod partner;
 mod start;
 mod stop;
 mod trace;
@@ -54,8 +59,10 @@ pub use condition::condition_scale;
 pub use crossing::crossings;
 pub use excursion::{reduced_start, ReducedStart};
 pub use extended::Extended;
+pub use partner::{codim2_places, inadmissible_point, partner_start, PartnerStart, PARTNER_STEP};
 pub use start::{
-    codim2_residual, condition_at_transition, condition_value, system, trace, unknowns,
+    codim2_residual, condition_at_transition, condition_value, system, trace, trace_watching,
+    unknowns,
 };
 
 use crate::bifurcation::TransitionKind;

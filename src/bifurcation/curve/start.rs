@@ -240,6 +240,29 @@ pub fn trace<M: Model>(
     condition: Condition,
     opts: &CurveOptions,
 ) -> Result<Curve, CurveError> {
+    trace_watching::<M>(base, plane, structure, start, condition, None, opts)
+}
+
+/// [`trace`], with the margin `watched` watched along the curve even where
+/// it nearly vanishes at the start (a condition that vanishes with the
+/// curve's own there, to 1e-6, is otherwise taken for the same event and
+/// left out): the curve's end where it vanishes is then a
+/// codimension-two end. For a curve started by branch switching
+/// ([`super::partner_start`]) a step from the codimension-two point, where
+/// the first curve's condition is still small: left out, the curve ran
+/// through the point into the region where the motion is not admissible
+/// (the paper model's `P_{(3_31 0_11 3_13 4_33)^2 3_33 4_33 3_31 0_11
+/// 3_13 4_33 3_33 4_33}^5` passable onset across its band's tip at
+/// W = 3.5838, Q0 = 72.017, where its `3_33` flows cross Σ1 beyond).
+pub fn trace_watching<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: Option<&Structure>,
+    start: &CurvePoint,
+    condition: Condition,
+    watched: Option<Condition>,
+    opts: &CurveOptions,
+) -> Result<Curve, CurveError> {
     check_options(opts)?;
     let sys = system::<M>(base, plane, structure, start, condition)?;
     let n = sys.len();
@@ -300,6 +323,14 @@ pub fn trace<M: Model>(
         let p = tracer.sys.params(&x);
         let pts = to_point(&x).points;
         tracer.sys.eval.exclude_companions(&p, &pts);
+        if let Some(Condition::Margin {
+            kind,
+            segment,
+            boundary,
+        }) = watched
+        {
+            tracer.sys.eval.watch((kind, segment, boundary));
+        }
         if tracer.sys.pinned() > 0 {
             tracer.sys.pin_tangent_arrivals(&x);
         }
@@ -443,32 +474,8 @@ pub fn codim2_residual<M: Model>(
     // measured as a curve measures it (a stick's end by its smooth margin,
     // not the event search's phase difference).
     let sim = Simulator::<M>::new(p, SimOptions::default()).ok()?;
-    // An interior margin to each boundary too: where the event search
-    // finds an early contact the walk lists one interior entry per segment
-    // (the contact's), while each boundary's has a smooth margin.
     let walked = admissible::conditions(&sim, structure, &end.at.points);
-    let mut candidates: Vec<Condition> = Vec::new();
-    for c in &walked {
-        let boundaries: Vec<Option<usize>> = if c.kind == ViolationKind::Interior {
-            (0..M::INFO.boundaries.len()).map(Some).collect()
-        } else {
-            vec![c.boundary]
-        };
-        for b in boundaries {
-            let cond = Condition::Margin {
-                kind: c.kind,
-                segment: c.segment,
-                boundary: b,
-            };
-            if transition_kind(c.kind) == kind
-                && (boundary.is_none() || b == boundary)
-                && cond != curve.condition
-                && !candidates.contains(&cond)
-            {
-                candidates.push(cond);
-            }
-        }
-    }
+    let candidates = second_candidates::<M>(&walked, curve.condition, kind, boundary);
     // A stick's vanishing where an extremum of `Fnf` at `±as` sits at an
     // end of the stick (on a passable-onset curve, which holds `|Fnf| = as`
     // at the stick's start: the interior extrema hold no such margin yet).
@@ -500,6 +507,43 @@ pub fn codim2_residual<M: Model>(
         })
         .chain(touches)
         .min_by(f64::total_cmp)
+}
+
+/// The motion's conditions that mark a codimension-two end of kind `kind`
+/// (on `boundary`, if it names one), other than the curve's own `own`,
+/// from the admissibility walk `walked` at the end: an interior margin to
+/// each boundary too (where the event search finds an early contact the
+/// walk lists one interior entry per segment, the contact's, while each
+/// boundary's has a smooth margin).
+pub(super) fn second_candidates<M: Model>(
+    walked: &[admissible::Violation],
+    own: Condition,
+    kind: TransitionKind,
+    boundary: Option<usize>,
+) -> Vec<Condition> {
+    let mut candidates: Vec<Condition> = Vec::new();
+    for c in walked {
+        let boundaries: Vec<Option<usize>> = if c.kind == ViolationKind::Interior {
+            (0..M::INFO.boundaries.len()).map(Some).collect()
+        } else {
+            vec![c.boundary]
+        };
+        for b in boundaries {
+            let cond = Condition::Margin {
+                kind: c.kind,
+                segment: c.segment,
+                boundary: b,
+            };
+            if transition_kind(c.kind) == kind
+                && (boundary.is_none() || b == boundary)
+                && cond != own
+                && !candidates.contains(&cond)
+            {
+                candidates.push(cond);
+            }
+        }
+    }
+    candidates
 }
 
 /// At a period-doubling end of a fold curve of `T T` (two equal halves,

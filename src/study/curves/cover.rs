@@ -21,8 +21,8 @@
 //! nothing is traced on the reduced motion ([`Cover::carry`]).
 
 use crate::bifurcation::curve::{
-    codim2_residual, crossings, reduced_start, trace, Condition, Curve, CurveEnd, CurveEndReason,
-    Line, Plane,
+    codim2_places, codim2_residual, crossings, inadmissible_point, partner_start, reduced_start,
+    trace_watching, Condition, Curve, CurveEnd, CurveEndReason, Line, Plane, PARTNER_STEP,
 };
 use crate::bifurcation::transition_kind;
 use crate::model::Model;
@@ -91,27 +91,48 @@ const NO_EXTENT: f64 = 1e-4;
 /// 7 points, 6e-7 of the box, before both ends failed; it carries nothing
 /// its start does not.
 fn stuck(plane: &Plane, curve: &Curve) -> Option<String> {
-    let failed = |e: &CurveEnd| match &e.reason {
-        CurveEndReason::NewtonFailure(why) => Some(why.clone()),
-        CurveEndReason::MaxPoints => Some("the point limit".into()),
-        _ => None,
-    };
     let [a, b] = curve.ends.as_slice() else {
         return None;
     };
     failed(b)?;
     let why = failed(a)?;
+    let extent = extent(plane, curve)?;
+    (extent <= NO_EXTENT).then(|| {
+        format!("the curve does not leave its start ({extent:.1e} of the box both ways): {why}")
+    })
+}
+
+/// Why an end is a failure (a corrector failure or the point limit).
+fn failed(e: &CurveEnd) -> Option<String> {
+    match &e.reason {
+        CurveEndReason::NewtonFailure(why) => Some(why.clone()),
+        CurveEndReason::MaxPoints => Some("the point limit".into()),
+        _ => None,
+    }
+}
+
+/// How far `curve` reaches from its first point (each parameter over its
+/// span).
+fn extent(plane: &Plane, curve: &Curve) -> Option<f64> {
     let first = curve.points.first()?;
     let spans = [
         plane.x_range[1] - plane.x_range[0],
         plane.y_range[1] - plane.y_range[0],
     ];
-    let extent = curve.points.iter().fold(0.0f64, |m, q| {
+    Some(curve.points.iter().fold(0.0f64, |m, q| {
         m.max(((q.x - first.x) / spans[0]).hypot((q.y - first.y) / spans[1]))
-    });
-    (extent <= NO_EXTENT).then(|| {
-        format!("the curve does not leave its start ({extent:.1e} of the box both ways): {why}")
-    })
+    }))
+}
+
+/// Whether a curve traced by branch switching carries nothing: it fails at
+/// an end and stays within [`NO_EXTENT`] of the box of its start. On
+/// `stribeck8` W = 0.95…1.02 × Q0 = 4.4…5.0 the passable-onset curve of a
+/// motion whose split stick's excursion shrinks there, switched to from
+/// its period doubling's end, went 4e-8 in W before its system turned
+/// singular (smallest singular value 5.7e-12).
+fn partial(plane: &Plane, curve: &Curve) -> bool {
+    curve.ends.iter().any(|e| failed(e).is_some())
+        && extent(plane, curve).is_some_and(|x| x <= NO_EXTENT)
 }
 
 /// Whether the start's motion has at most `max` mappings (is traced).
@@ -166,21 +187,23 @@ impl<'a, M: Model> Cover<'a, M> {
             if self.on_curve(start) {
                 continue;
             }
-            match self.trace_start(start) {
+            match self.trace_start(start, None) {
                 Ok(curve) => self.curves.push(curve),
                 Err(why) => self.failed.push((start.clone(), why)),
             }
         }
     }
 
-    /// The curve through `start`, or why none.
-    fn trace_start(&self, start: &Start) -> Result<Curve, String> {
-        match trace::<M>(
+    /// The curve through `start`, or why none (with `watched` watched
+    /// along it: [`trace_watching`]).
+    fn trace_start(&self, start: &Start, watched: Option<Condition>) -> Result<Curve, String> {
+        match trace_watching::<M>(
             self.base,
             &self.plane,
             start.structure.as_ref(),
             &start.point,
             start.condition,
+            watched,
             &self.settings.curve,
         ) {
             Ok(curve) if !curve.points.is_empty() => match stuck(&self.plane, &curve) {
@@ -392,13 +415,87 @@ impl<'a, M: Model> Cover<'a, M> {
                     if self.on_curve(&r) {
                         continue;
                     }
-                    if let Ok(curve) = self.trace_start(&r) {
+                    if let Ok(curve) = self.trace_start(&r, None) {
                         self.curves.push(curve);
                         continue;
                     }
                 }
             }
             self.failed.push((start, why));
+        }
+    }
+
+    /// Last, branch switching: from every codimension-two point of a traced
+    /// curve (its codim-2 ends, and the fold and period-doubling points
+    /// along a margin curve), the second condition's curve of the same
+    /// motion ([`partner_start`]), traced unless a traced curve passes its
+    /// start; the curves so found are switched from in turn, at most
+    /// `max_partners` traces in all. What a line finds only where it
+    /// happens to cross the curve (the tips of a period-adding cascade's
+    /// bands, where a grazing meets a passable onset) is found from the
+    /// point where it meets a curve a line did find.
+    pub fn partners(&mut self) {
+        let mut budget = self.settings.max_partners;
+        let mut next = 0;
+        while next < self.curves.len() && budget > 0 {
+            let curve = self.curves[next].clone();
+            next += 1;
+            for (kind, boundary, at) in codim2_places(&curve) {
+                // A smaller step where the first one's start fails another
+                // condition: a third curve passing near the point.
+                for step in [PARTNER_STEP, PARTNER_STEP / 16.0] {
+                    if budget == 0 {
+                        break;
+                    }
+                    let Some(s) = partner_start::<M>(
+                        self.base,
+                        &self.plane,
+                        &curve,
+                        kind,
+                        boundary,
+                        at,
+                        step,
+                        self.settings.curve.tolerance,
+                    ) else {
+                        continue;
+                    };
+                    let start = Start {
+                        kind: s.kind,
+                        boundary: s.boundary,
+                        structure: Some(s.structure),
+                        condition: s.condition,
+                        line: if s.horizontal {
+                            Line::X(s.point.x)
+                        } else {
+                            Line::Y(s.point.y)
+                        },
+                        point: s.point,
+                    };
+                    if !traceable(&start, self.settings.max_mappings) || self.on_curve(&start) {
+                        break;
+                    }
+                    budget -= 1;
+                    let Ok(traced) = self.trace_start(&start, Some(curve.condition)) else {
+                        continue;
+                    };
+                    if partial(&self.plane, &traced)
+                        || inadmissible_point::<M>(self.base, &self.plane, &traced).is_some()
+                    {
+                        break;
+                    }
+                    // Named by its trace (an arrival's margin may mark a
+                    // passable onset): passed by a traced curve so named?
+                    let renamed = traced.kind != start.kind;
+                    let named = Start {
+                        kind: traced.kind,
+                        ..start
+                    };
+                    if !renamed || !self.on_curve(&named) {
+                        self.curves.push(traced);
+                    }
+                    break;
+                }
+            }
         }
     }
 

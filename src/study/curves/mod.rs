@@ -215,6 +215,10 @@ pub struct CurvesSettings {
     /// default, 24, traces the paper model's cascades to period 7 (Fig. 11:
     /// 39 curves where 12 gives 31, 6.6 s where 12 takes 3.8 s).
     pub max_mappings: usize,
+    /// At most this many curves traced by branch switching at the
+    /// codimension-two points of the curves found (the second condition's
+    /// curve of the same motion through each).
+    pub max_partners: usize,
     /// The sweeps' settings.
     pub sweep: SweepOptions,
     /// The curves' continuation.
@@ -231,6 +235,7 @@ impl Default for CurvesSettings {
             max_refine: 4,
             probes: 0,
             max_mappings: 24,
+            max_partners: 200,
             sweep: SweepOptions::default(),
             curve: CurveOptions {
                 max_points: 2000,
@@ -294,5 +299,6 @@ pub fn traced<M: Model>(
     cover.refine();
     cover.probe();
     cover.carry();
+    cover.partners();
     Ok(cover.finish(opts))
 }
