@@ -95,28 +95,21 @@ fn the_passable_onset_curve_is_switched_to_at_the_band_tip() {
     assert_eq!(curve.kind, TransitionKind::Grazing);
     // 1. Its end at the band's tip.
     let places = codim2_places(&curve);
-    let (kind, boundary, tip) = places
+    let place = places
         .iter()
-        .find(|(_, _, p)| (p.y - 72.0168).abs() < 0.01)
+        .find(|p| (p.at.y - 72.0168).abs() < 0.01)
         .copied()
         .unwrap_or_else(|| panic!("an end at the tip: {:?}", curve.ends));
+    let (kind, boundary, tip) = (place.kind, place.boundary, place.at);
     assert_eq!(kind, TransitionKind::PassableOnset);
     assert!(curve
         .ends
         .iter()
         .any(|e| e.at == *tip && e.reason == CurveEndReason::Codim2 { kind, boundary }));
     // 2. The partner's start.
-    let partner = partner_start::<Paper>(
-        &base,
-        &plane,
-        &curve,
-        kind,
-        boundary,
-        tip,
-        PARTNER_STEP,
-        opts.tolerance,
-    )
-    .expect("a start of the second curve");
+    let partner =
+        partner_start::<Paper>(&base, &plane, &curve, &place, PARTNER_STEP, opts.tolerance)
+            .expect("a start of the second curve");
     assert_ne!(partner.condition, curve.condition);
     assert_eq!(partner.structure, structure);
     let own = condition_value::<Paper>(

@@ -2,7 +2,8 @@
 //! `failed_starts`, and a "Missing curves" block in the text), not dropped.
 //!
 //! One seed line across Shaw's box (`coulomb` with `V = 0, d = 0,
-//! mus = 0.45, muk = 0.3`; no spread, edge, missing-curve or refinement lines),
+//! mus = 0.45, muk = 0.3`; no spread, edge, missing-curve or refinement lines,
+//! no branch switching at codimension-two points),
 //! traced once as usual and once with a corrector tolerance no Newton step
 //! reaches (1e-300), so that every trace fails at its start. The second
 //! run must list every transition the first traced a curve from, on the
@@ -32,6 +33,7 @@ fn run(tolerance: Option<f64>) -> CurveSet {
         edges: false,
         max_missing: 0,
         max_refine: 0,
+        max_partners: 0,
         ..CurvesSettings::default()
     };
     if let Some(t) = tolerance {

@@ -52,12 +52,24 @@ pub struct PartnerStart {
     pub horizontal: bool,
 }
 
+/// A codimension-two point of a curve: where a second condition of its
+/// motion vanishes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Codim2Place<'a> {
+    /// The second condition's transition.
+    pub kind: TransitionKind,
+    /// Its boundary, if any.
+    pub boundary: Option<usize>,
+    /// Where (one of the curve's points).
+    pub at: &'a CurvePoint,
+}
+
 /// The codimension-two points of `curve` where a second condition of its
 /// motion vanishes: its codim-2 ends, and the fold and period-doubling
-/// points along a margin curve ([`super::Special`]), each with that
-/// condition's transition and boundary. Not the ends where an excursion
-/// shrank to nothing (their second curve is the reduced motion's).
-pub fn codim2_places(curve: &Curve) -> Vec<(TransitionKind, Option<usize>, &CurvePoint)> {
+/// points along a margin curve ([`super::Special`]). Not the ends where an
+/// excursion shrank to nothing (their second curve is the reduced
+/// motion's).
+pub fn codim2_places(curve: &Curve) -> Vec<Codim2Place<'_>> {
     let mut out = Vec::new();
     if curve.structure.is_none() {
         return out;
@@ -65,12 +77,20 @@ pub fn codim2_places(curve: &Curve) -> Vec<(TransitionKind, Option<usize>, &Curv
     for e in &curve.ends {
         if let CurveEndReason::Codim2 { kind, boundary } = e.reason {
             if !curve.shrunk_excursion(&e.at) {
-                out.push((kind, boundary, &e.at));
+                out.push(Codim2Place {
+                    kind,
+                    boundary,
+                    at: &e.at,
+                });
             }
         }
     }
     for s in &curve.special {
-        out.push((s.kind, None, &s.at));
+        out.push(Codim2Place {
+            kind: s.kind,
+            boundary: None,
+            at: &s.at,
+        });
     }
     out
 }
@@ -108,9 +128,9 @@ fn second_condition<M: Model>(
         .map(|(c, _)| c)
 }
 
-/// The start of the second curve through the codimension-two point `at`
-/// of `curve` (one of [`codim2_places`]), where a condition of kind `kind`
-/// (on `boundary`) vanishes with the curve's own: `step` (in the scaled
+/// The start of the second curve through the codimension-two point
+/// `place` of `curve` (one of [`codim2_places`]), where a condition of its
+/// kind (on its boundary) vanishes with the curve's own: `step` (in the scaled
 /// metric; [`PARTNER_STEP`] first) along the second condition's tangent
 /// from `at`, corrected onto its curve by pseudo-arclength to `tolerance`,
 /// on the side where the curve's own margin is positive (the first side
@@ -125,12 +145,11 @@ pub fn partner_start<M: Model>(
     base: &M::Params,
     plane: &Plane,
     curve: &Curve,
-    kind: TransitionKind,
-    boundary: Option<usize>,
-    at: &CurvePoint,
+    place: &Codim2Place<'_>,
     step: f64,
     tolerance: f64,
 ) -> Option<PartnerStart> {
+    let Codim2Place { kind, boundary, at } = *place;
     let structure = curve.structure.as_ref()?;
     let second = second_condition::<M>(base, plane, curve, structure, kind, boundary, at)?;
     let mut sys = system::<M>(base, plane, Some(structure), at, second).ok()?;

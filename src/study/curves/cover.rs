@@ -16,9 +16,11 @@
 //! line (a period-adding cascade between a grazing and a passable onset),
 //! is found where it touches a probed curve. What neither a line nor a
 //! probe crosses stays unseen: an isola smaller than the spacing of the
-//! lines and away from every line and curve is not found. Last, no line:
+//! lines and away from every line and curve is not found. Then, no line:
 //! each start that failed where an excursion of its motion shrinks to
-//! nothing is traced on the reduced motion ([`Cover::carry`]).
+//! nothing is traced on the reduced motion ([`Cover::carry`]); last,
+//! branch switching: from every codimension-two point of a traced curve,
+//! the second condition's curve of the same motion ([`Cover::partners`]).
 
 use crate::bifurcation::curve::{
     codim2_places, codim2_residual, crossings, inadmissible_point, partner_start, reduced_start,
@@ -440,7 +442,7 @@ impl<'a, M: Model> Cover<'a, M> {
         while next < self.curves.len() && budget > 0 {
             let curve = self.curves[next].clone();
             next += 1;
-            for (kind, boundary, at) in codim2_places(&curve) {
+            for place in codim2_places(&curve) {
                 // A smaller step where the first one's start fails another
                 // condition: a third curve passing near the point.
                 for step in [PARTNER_STEP, PARTNER_STEP / 16.0] {
@@ -451,9 +453,7 @@ impl<'a, M: Model> Cover<'a, M> {
                         self.base,
                         &self.plane,
                         &curve,
-                        kind,
-                        boundary,
-                        at,
+                        &place,
                         step,
                         self.settings.curve.tolerance,
                     ) else {
