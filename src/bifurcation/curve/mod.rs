@@ -59,7 +59,10 @@ pub use condition::condition_scale;
 pub use crossing::crossings;
 pub use excursion::{reduced_start, ReducedStart};
 pub use extended::Extended;
-pub use partner::{codim2_places, inadmissible_point, partner_start, PartnerStart, PARTNER_STEP};
+pub use partner::{
+    codim2_places, inadmissible_point, partner_start, Codim2Place, PartnerStart, ADMISSIBLE_TO,
+    PARTNER_STEP,
+};
 pub use start::{
     codim2_residual, condition_at_transition, condition_value, system, trace, trace_watching,
     unknowns,
