@@ -10,7 +10,7 @@
 //! Stop 41: one curve of 546 is inadmissible somewhere, the stick-end
 //! box's passable onset of `P_{3_31 0_11 3_13 4_33}`, by 1.2e-7 of its
 //! scale at its turning point W = 2.66696, Q0 = 192.1287, 0.0034 in Q0
-//! from where that motion's grazing curve ends.
+//! from where that motion's grazing curve ends (not examined).
 
 use stickslip::bifurcation::curve::inadmissible_point;
 use stickslip::bifurcation::curve::Line;
