@@ -284,15 +284,7 @@ impl<M: Model> Evaluator<M> {
     /// from, small but positive at the start, a step from the
     /// codimension-two point where it vanishes. Never the curve's own.
     pub fn watch(&mut self, id: ConditionId) {
-        let own = match self.condition {
-            Condition::Margin {
-                kind,
-                segment,
-                boundary,
-            } => Some((kind, segment, boundary)),
-            _ => None,
-        };
-        if own == Some(id) {
+        if self.condition.margin_id() == Some(id) {
             return;
         }
         let mut k = 0;

@@ -69,7 +69,7 @@ pub use start::{
 };
 
 use crate::bifurcation::TransitionKind;
-use crate::orbit::admissible::ViolationKind;
+use crate::orbit::admissible::{ConditionId, ViolationKind};
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::structure::Structure;
 
@@ -114,6 +114,21 @@ pub enum Condition {
         /// The rate `DF_j` (else `F_j`).
         rate: bool,
     },
+}
+
+impl Condition {
+    /// The admissibility condition a `Margin` names (as the walk of
+    /// [`crate::orbit::admissible`] identifies it); `None` for any other.
+    pub fn margin_id(self) -> Option<ConditionId> {
+        match self {
+            Condition::Margin {
+                kind,
+                segment,
+                boundary,
+            } => Some((kind, segment, boundary)),
+            _ => None,
+        }
+    }
 }
 
 /// The parameter plane: which two parameters are free, and the box.

@@ -21,7 +21,7 @@ use crate::orbit::admissible::{self, ViolationKind};
 use crate::orbit::structure::Structure;
 
 use super::condition::condition_scale;
-use super::start::{condition_value, second_candidates, system, to_point, unknowns};
+use super::start::{condition_value, second_margins, system, to_point, unknowns};
 use super::{Condition, Curve, CurveEndReason, CurvePoint, Plane};
 
 /// The step from the codimension-two point onto the second curve, in the
@@ -112,18 +112,10 @@ fn second_condition<M: Model>(
         let c = Condition::Eigen(kind);
         return (c != curve.condition).then_some(c);
     }
-    let mut p = *base;
-    p.set(plane.x, at.x);
-    p.set(plane.y, at.y);
-    let sim = Simulator::<M>::new(p, SimOptions::default()).ok()?;
-    let walked = admissible::conditions(&sim, structure, &at.points);
-    second_candidates::<M>(&walked, curve.condition, kind, boundary)
+    second_margins::<M>(base, plane, structure, curve.condition, kind, boundary, at)?
+        .scaled
         .into_iter()
-        .filter_map(|c| {
-            let v = condition_value::<M>(base, plane, Some(structure), at, c).ok()?;
-            let r = (v / condition_scale::<M>(&p, c, Some(structure), &at.points)).abs();
-            r.is_finite().then_some((c, r))
-        })
+        .filter(|(_, r)| r.is_finite())
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(c, _)| c)
 }
@@ -253,14 +245,7 @@ pub fn inadmissible_point<M: Model>(
     curve: &Curve,
 ) -> Option<(f64, CurvePoint)> {
     let structure = curve.structure.as_ref()?;
-    let own = match curve.condition {
-        Condition::Margin {
-            kind,
-            segment,
-            boundary,
-        } => Some((kind, segment, boundary)),
-        _ => None,
-    };
+    let own = curve.condition.margin_id();
     let n = curve.points.len();
     let mut sim: Option<Simulator<M>> = None;
     for q in curve.points.iter().take(n.saturating_sub(1)).skip(1) {

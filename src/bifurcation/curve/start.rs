@@ -323,13 +323,8 @@ pub fn trace_watching<M: Model>(
         let p = tracer.sys.params(&x);
         let pts = to_point(&x).points;
         tracer.sys.eval.exclude_companions(&p, &pts);
-        if let Some(Condition::Margin {
-            kind,
-            segment,
-            boundary,
-        }) = watched
-        {
-            tracer.sys.eval.watch((kind, segment, boundary));
+        if let Some(id) = watched.and_then(Condition::margin_id) {
+            tracer.sys.eval.watch(id);
         }
         if tracer.sys.pinned() > 0 {
             tracer.sys.pin_tangent_arrivals(&x);
@@ -470,12 +465,19 @@ pub fn codim2_residual<M: Model>(
         let v = condition_value::<M>(base, plane, Some(structure), &end.at, c).ok()?;
         return Some(scaled(c, v).min(halves_residual::<M>(base, plane, curve, end, &p)));
     }
-    // Which conditions the motion has, from the admissibility walk; each
-    // measured as a curve measures it (a stick's end by its smooth margin,
-    // not the event search's phase difference).
-    let sim = Simulator::<M>::new(p, SimOptions::default()).ok()?;
-    let walked = admissible::conditions(&sim, structure, &end.at.points);
-    let candidates = second_candidates::<M>(&walked, curve.condition, kind, boundary);
+    let SecondMargins {
+        sim,
+        walked,
+        scaled: margins,
+    } = second_margins::<M>(
+        base,
+        plane,
+        structure,
+        curve.condition,
+        kind,
+        boundary,
+        &end.at,
+    )?;
     // A stick's vanishing where an extremum of `Fnf` at `±as` sits at an
     // end of the stick (on a passable-onset curve, which holds `|Fnf| = as`
     // at the stick's start: the interior extrema hold no such margin yet).
@@ -499,30 +501,47 @@ pub fn codim2_residual<M: Model>(
             };
             Some(scaled(cond, touch))
         });
-    candidates
+    margins
         .into_iter()
-        .filter_map(|cond| {
-            let v = condition_value::<M>(base, plane, Some(structure), &end.at, cond).ok()?;
-            Some(scaled(cond, v))
-        })
+        .map(|(_, r)| r)
         .chain(touches)
         .min_by(f64::total_cmp)
 }
 
-/// The motion's conditions that mark a codimension-two end of kind `kind`
-/// (on `boundary`, if it names one), other than the curve's own `own`,
-/// from the admissibility walk `walked` at the end: an interior margin to
-/// each boundary too (where the event search finds an early contact the
-/// walk lists one interior entry per segment, the contact's, while each
-/// boundary's has a smooth margin).
-pub(super) fn second_candidates<M: Model>(
-    walked: &[admissible::Violation],
+/// The admissibility walk at a codimension-two point, and the margins it
+/// names ([`second_margins`]).
+pub(super) struct SecondMargins<M: Model> {
+    /// The simulator at the point's parameters.
+    pub sim: Simulator<M>,
+    /// The walk's conditions there.
+    pub walked: Vec<admissible::Violation>,
+    /// Each candidate second condition with `|value| / scale` there.
+    pub scaled: Vec<(Condition, f64)>,
+}
+
+/// The motion's margins that mark a codimension-two point `at` of kind
+/// `kind` (on `boundary`, if it names one), other than the curve's own
+/// `own`, each with `|value| / scale` ([`condition_scale`](super::condition_scale)),
+/// measured as a curve measures it (a stick's end by its smooth margin,
+/// not the event search's phase difference). The candidates come from
+/// the admissibility walk, with an interior margin to each boundary (where
+/// the event search finds an early contact the walk lists one interior
+/// entry per segment, the contact's, while each boundary's has a smooth
+/// margin). `None` if the walk cannot run there.
+pub(super) fn second_margins<M: Model>(
+    base: &M::Params,
+    plane: &Plane,
+    structure: &Structure,
     own: Condition,
     kind: TransitionKind,
     boundary: Option<usize>,
-) -> Vec<Condition> {
+    at: &CurvePoint,
+) -> Option<SecondMargins<M>> {
+    let p = with::<M>(base, plane, at.x, at.y);
+    let sim = Simulator::<M>::new(p, SimOptions::default()).ok()?;
+    let walked = admissible::conditions(&sim, structure, &at.points);
     let mut candidates: Vec<Condition> = Vec::new();
-    for c in walked {
+    for c in &walked {
         let boundaries: Vec<Option<usize>> = if c.kind == ViolationKind::Interior {
             (0..M::INFO.boundaries.len()).map(Some).collect()
         } else {
@@ -543,7 +562,19 @@ pub(super) fn second_candidates<M: Model>(
             }
         }
     }
-    candidates
+    let scaled = candidates
+        .into_iter()
+        .filter_map(|c| {
+            let v = condition_value::<M>(base, plane, Some(structure), at, c).ok()?;
+            let r = (v / super::condition_scale::<M>(&p, c, Some(structure), &at.points)).abs();
+            Some((c, r))
+        })
+        .collect();
+    Some(SecondMargins {
+        sim,
+        walked,
+        scaled,
+    })
 }
 
 /// At a period-doubling end of a fold curve of `T T` (two equal halves,
