@@ -7,10 +7,13 @@
 //!
 //!     cargo run --release --example curves_audit
 //!
-//! Stop 41: one curve of 546 is inadmissible somewhere, the stick-end
+//! Stop 41: one curve of 546 was inadmissible somewhere, the stick-end
 //! box's passable onset of `P_{3_31 0_11 3_13 4_33}`, by 1.2e-7 of its
-//! scale at its turning point W = 2.66696, Q0 = 192.1287, 0.0034 in Q0
-//! from where that motion's grazing curve ends (not examined).
+//! scale at its turning point W = 2.66696, Q0 = 192.1287: a condition
+//! within 1e-6 of zero at its start was taken for one vanishing with its
+//! own and never watched again. Stop 42 watches such conditions
+//! (`bifurcation::curve::COMPANION_SLACK`): 0 of 549. The check runs as a
+//! test on the paper's reference scene (`tests/curve_companion.rs`).
 
 use stickslip::bifurcation::curve::inadmissible_point;
 use stickslip::bifurcation::curve::Line;

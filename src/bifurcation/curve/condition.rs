@@ -215,10 +215,28 @@ pub(super) struct Evaluator<M: Model> {
     /// ([`Self::stick_ends`]).
     walk_excluded: Vec<ConditionId>,
     stick_ends: usize,
+    /// The companions watched ([`Self::companion`]): the excluded
+    /// conditions other than the curve's own.
+    companions: [ConditionId; MAX_EXCLUDED],
+    companions_len: usize,
 }
 
 /// At most this many conditions vanish with a curve's own.
 const MAX_EXCLUDED: usize = 8;
+
+/// A condition that vanishes with a curve's own at its start (within
+/// [`SAME_EVENT`], absolute: `Evaluator::exclude_companions`) is still
+/// watched along the curve (`Evaluator::companion`): the curve ends where
+/// its margin over its scale ([`condition_scale`]) falls below minus this,
+/// at the point where it vanishes, and a start where it is already below
+/// fails (a motion that does not exist there). One that truly
+/// vanishes with the curve's own holds to rounding all along (to its
+/// square root where the two meet tangentially: 2e-9 to 8e-9 of its scale
+/// at such starts on the stick-end and `stribeck8` boxes); one that only
+/// passes near zero there (a second border of a band near the band's tip:
+/// within 1e-7 of its scale over much of the box on Fig. 11's) turns
+/// negative where the curve leaves the region where its motion exists.
+pub const COMPANION_SLACK: f64 = 1e-8;
 
 impl<M: Model> Evaluator<M> {
     /// The evaluator at parameters `p` (which must be valid).
@@ -256,6 +274,8 @@ impl<M: Model> Evaluator<M> {
             },
             walk_excluded,
             stick_ends,
+            companions: [(ViolationKind::Other, usize::MAX, None); MAX_EXCLUDED],
+            companions_len: 0,
         })
         .map(|mut e: Self| {
             if let Condition::Margin {
@@ -283,6 +303,11 @@ impl<M: Model> Evaluator<M> {
     /// [`SAME_EVENT`]): the condition of the curve a branch switch started
     /// from, small but positive at the start, a step from the
     /// codimension-two point where it vanishes. Never the curve's own.
+    /// Watched exactly, not as a companion: its margin must be positive at
+    /// the start. A companion's slack would let a switched start pass where
+    /// that condition vanishes identically with the curve's own (a motion
+    /// `T T` whose halves are the same, on `stribeck8`: its curves double
+    /// those of `T`).
     pub fn watch(&mut self, id: ConditionId) {
         if self.condition.margin_id() == Some(id) {
             return;
@@ -296,6 +321,103 @@ impl<M: Model> Evaluator<M> {
         }
         self.excluded_len = k;
         self.sync_excluded();
+        let mut k = 0;
+        for i in 0..self.companions_len {
+            if self.companions[i] != id {
+                self.companions[k] = self.companions[i];
+                k += 1;
+            }
+        }
+        self.companions_len = k;
+    }
+
+    /// Whether `id` is the interior contact of a segment whose arrival or
+    /// departure on that boundary is excluded (tangential with the curve's
+    /// own condition): the same event as that tangency
+    /// ([`Self::exclude_companions`]). Its margin is zero where the
+    /// velocity's extremum sits at that end, or a rounding's square root
+    /// off zero where rounding puts the extremum just inside: on the paper
+    /// model's passable onset of `P_{3_31 0_11 3_13 4_33}` near its turning
+    /// point W = 2.66696, Q0 = 192.1287 it is −1.2e-7 of its scale, and
+    /// `orbit` finds the motion admissible there. Watched to [`SAME_EVENT`]
+    /// (absolute) for that: deeper, the extremum has left the segment's
+    /// end, and the curve ends where that end turned tangential to second
+    /// order (`Tracer::field_point`).
+    fn tangency_interior(&self, id: ConditionId) -> bool {
+        self.tangential_end(id).is_some()
+    }
+
+    /// The segment and end (`true`: its arrival) whose tangency `id` is the
+    /// interior contact of ([`Self::tangency_interior`]), if it is one.
+    pub(super) fn tangential_end(&self, id: ConditionId) -> Option<(usize, bool)> {
+        let (ViolationKind::Interior, segment, Some(b)) = id else {
+            return None;
+        };
+        let excluded = &self.excluded[..self.excluded_len];
+        if excluded.contains(&(ViolationKind::Arrival, segment, Some(b))) {
+            Some((segment, true))
+        } else if excluded.contains(&(ViolationKind::Departure, segment, Some(b))) {
+            Some((segment, false))
+        } else {
+            None
+        }
+    }
+
+    /// The scale of margin `id` at `(p, points)` ([`condition_scale`]).
+    fn scale_of(&self, p: &M::Params, points: &[SwitchingPoint], id: ConditionId) -> f64 {
+        let (kind, segment, boundary) = id;
+        let condition = Condition::Margin {
+            kind,
+            segment,
+            boundary,
+        };
+        condition_scale::<M>(p, condition, self.structure.as_ref(), points)
+    }
+
+    /// The smallest over the companions of each one's margin over its
+    /// scale plus [`COMPANION_SLACK`] (negative: it has left rounding, and
+    /// the curve its motion's region), with the condition; `+∞` without
+    /// companions. The interior contact of a tangential arrival or
+    /// departure ([`Self::tangency_interior`]) has [`SAME_EVENT`] instead
+    /// (absolute: the depth of an extremum a rounding's square root inside
+    /// the segment's end). A companion the walk does not evaluate, or
+    /// cannot (NaN), does not count.
+    pub fn companion(
+        &mut self,
+        p: &M::Params,
+        points: &[SwitchingPoint],
+    ) -> (f64, Option<ConditionId>) {
+        let mut best = (f64::INFINITY, None);
+        let n = self.companions_len;
+        if n == 0 || self.sim.set_params(*p).is_err() {
+            return best;
+        }
+        let Some(structure) = &self.structure else {
+            return best;
+        };
+        let mut margins = [None; MAX_EXCLUDED];
+        admissible::margins_of(
+            &self.sim,
+            structure,
+            points,
+            &self.companions[..n],
+            &mut margins[..n],
+        );
+        for (&id, margin) in self.companions[..n].iter().zip(&margins[..n]) {
+            let Some(m) = margin.filter(|m| m.is_finite()) else {
+                continue;
+            };
+            let scale = self.scale_of(p, points, id);
+            let v = if self.tangency_interior(id) {
+                (m + SAME_EVENT) / scale
+            } else {
+                m / scale + COMPANION_SLACK
+            };
+            if v < best.0 {
+                best = (v, Some(id));
+            }
+        }
+        best
     }
 
     fn exclude(&mut self, id: ConditionId) {
@@ -324,7 +446,10 @@ impl<M: Model> Evaluator<M> {
     /// transition where a segment shrinks to nothing makes its duration,
     /// its departure and arrival and the force criteria there vanish
     /// together, all along the curve: they are one event, not a
-    /// codimension-two point.
+    /// codimension-two point. Each is still watched, to rounding relative
+    /// to its scale ([`Self::companion`], [`COMPANION_SLACK`]): within 1e-6
+    /// of zero is not vanishing with the curve's own (near a band's tip
+    /// the band's other border is as close over much of the box).
     pub fn exclude_companions(&mut self, p: &M::Params, points: &[SwitchingPoint]) {
         let (Condition::Margin { .. }, Some(structure)) = (self.condition, self.structure.clone())
         else {
@@ -367,6 +492,11 @@ impl<M: Model> Evaluator<M> {
             }
         }
         self.sync_excluded();
+        // The companions: watched with their slack ([`Self::companion`]).
+        self.companions_len = 1.max(self.excluded_len) - 1;
+        for i in 1..self.excluded_len {
+            self.companions[i - 1] = self.excluded[i];
+        }
     }
 
     /// The condition's value at `(points, p)`: zero on the curve, NaN

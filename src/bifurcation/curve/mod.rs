@@ -55,7 +55,7 @@ mod start;
 mod stop;
 mod trace;
 
-pub use condition::condition_scale;
+pub use condition::{condition_scale, COMPANION_SLACK};
 pub use crossing::crossings;
 pub use excursion::{reduced_start, ReducedStart};
 pub use extended::Extended;

@@ -17,10 +17,10 @@ use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::{self, ViolationKind};
+use crate::orbit::admissible::{self, ViolationKind, SAME_EVENT};
 use crate::orbit::structure::Structure;
 
-use super::condition::condition_scale;
+use super::condition::{condition_scale, COMPANION_SLACK};
 use super::start::{condition_value, second_margins, system, to_point, unknowns};
 use super::{Condition, Curve, CurveEndReason, CurvePoint, Plane};
 
@@ -221,24 +221,32 @@ pub fn partner_start<M: Model>(
 
 /// A curve switched to may not run where a condition of its motion other
 /// than its own is violated by more than this fraction of that
-/// condition's scale ([`condition_scale`]): a condition that vanishes with
-/// the curve's own all along holds to rounding.
-pub const ADMISSIBLE_TO: f64 = 1e-8;
+/// condition's scale ([`condition_scale`]): the companions' slack
+/// ([`COMPANION_SLACK`]). A condition that vanishes with the curve's own
+/// all along holds to rounding.
+pub const ADMISSIBLE_TO: f64 = COMPANION_SLACK;
 
 /// The first point of `curve` (its ends aside) where a condition of its
 /// motion other than its own is violated by more than [`ADMISSIBLE_TO`] of
 /// its scale (by the admissibility walk, with its event search; a stick's
 /// end by its smooth margin), with that margin over its scale: `None` if
-/// the motion is admissible all along. A curve switched to a step from a
-/// codimension-two point may start where a third condition is still below
-/// [`SAME_EVENT`](crate::orbit::admissible::SAME_EVENT) (near a band's tip the band's two borders stay within
-/// 1e-6 of each other over much of the box); such a condition is taken for
-/// one vanishing with the curve's own and not watched, and the curve can
-/// run on where the motion no longer exists. On the paper model (W = 3…4 ×
-/// Q0 = 65…75) a passable-onset curve of `P_{(3_31 0_11 3_13 4_33)^2
-/// 3_33 4_33 3_31 0_11 3_13 4_33 3_33 4_33}^5` so ran across its band's
-/// tip at W = 3.5838, Q0 = 72.017 to Q0 = 71.97, where its `3_33` flow
-/// crosses Σ1 (margin −5.1e-7 at Q0 = 72.014, −7.7e-6 at its end).
+/// the motion is admissible all along. The interior contact of a segment
+/// whose arrival or departure on that boundary is tangential there (to
+/// [`SAME_EVENT`]) is that tangency while its margin is within
+/// `SAME_EVENT` of zero, not a contact: the velocity's extremum sits at
+/// the segment's end, its margin zero or a rounding's square root off it
+/// (the tracer watches it so).
+///
+/// Until stop 42 a condition within `SAME_EVENT` of zero at a curve's
+/// start was never watched along it, and a curve could run on where its
+/// motion no longer exists: on the paper model (W = 3…4 × Q0 = 65…75) a
+/// passable-onset curve of `P_{(3_31 0_11 3_13 4_33)^2 3_33 4_33 3_31 0_11
+/// 3_13 4_33 3_33 4_33}^5` ran across its band's tip at W = 3.5838,
+/// Q0 = 72.017 to Q0 = 71.97, where its `3_33` flow crosses Σ1 (margin
+/// −5.1e-7 at Q0 = 72.014, −7.7e-6 at its end). Such a condition is now
+/// watched to [`COMPANION_SLACK`] of its scale; this check stays as the
+/// branch switch's guard and the audit's measure
+/// (`examples/curves_audit.rs`).
 pub fn inadmissible_point<M: Model>(
     base: &M::Params,
     plane: &Plane,
@@ -264,9 +272,19 @@ pub fn inadmissible_point<M: Model>(
                 Err(_) => continue,
             },
         };
-        let worst = admissible::conditions(sim, structure, &q.points)
-            .into_iter()
-            .filter(|c| Some((c.kind, c.segment, c.boundary)) != own)
+        let all = admissible::conditions(sim, structure, &q.points);
+        let tangency = |c: &admissible::Violation| {
+            c.kind == ViolationKind::Interior
+                && all.iter().any(|e| {
+                    matches!(e.kind, ViolationKind::Arrival | ViolationKind::Departure)
+                        && (e.segment, e.boundary) == (c.segment, c.boundary)
+                        && e.margin.abs() <= SAME_EVENT
+                })
+                && c.margin >= -SAME_EVENT
+        };
+        let worst = all
+            .iter()
+            .filter(|c| Some((c.kind, c.segment, c.boundary)) != own && !tangency(c))
             .filter_map(|c| {
                 let id = (c.kind, c.segment, c.boundary);
                 let m = if c.kind == ViolationKind::StickEnd {

@@ -7,7 +7,7 @@ use crate::bifurcation::continuation::transition_kind;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{Model, ParamSet};
-use crate::orbit::admissible::{self, ViolationKind};
+use crate::orbit::admissible::{self, ViolationKind, SAME_EVENT};
 use crate::orbit::periodic::{PeriodicSolver, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
@@ -343,6 +343,12 @@ pub fn trace_watching<M: Model>(
     let first = tracer
         .examine(x.clone(), t.clone())
         .map_err(CurveError::Start)?;
+    if first.companion < 0.0 {
+        return Err(CurveError::Start(format!(
+            "a condition within {SAME_EVENT:e} of zero at the start, taken to vanish with the curve's own, is violated there beyond rounding ({:?})",
+            first.companion_id
+        )));
+    }
     if first.other_event.is_nan() || first.other_event <= 0.0 {
         return Err(CurveError::Start(format!(
             "another condition fails at the start ({:?}, margin {:e})",

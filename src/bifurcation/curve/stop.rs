@@ -407,33 +407,47 @@ impl<M: Model> Tracer<'_, M> {
             (false, mi.from == b && before.kind != MappingKind::Stick),
             (true, mi.to == b),
         ];
-        // A flow segment only.
-        mi.domain?;
         let mut best: Option<Sample> = None;
         for (arrival, applies) in ends {
             if !applies {
                 continue;
             }
-            let field = |rate| Condition::NormalField {
-                segment,
-                arrival,
-                rate,
-            };
-            let Some(x) = self.solve_pair(prev, Some(field(false)), field(true), bound) else {
+            let Some(at) = self.field_point(prev, segment, arrival, bound) else {
                 continue;
             };
-            let Ok(at) = self.examine(x, prev.t.clone()) else {
-                continue;
-            };
-            if at.other < -SAME_EVENT {
-                continue;
-            }
             let nearer = |a: &Sample| self.sys.dot_diff(&prev.t, &a.x, &prev.x);
             if best.as_ref().is_none_or(|q| nearer(&at) < nearer(q)) {
                 best = Some(at);
             }
         }
         best
+    }
+
+    /// Where the normal field at one end of flow segment `segment` (its
+    /// arrival, or its departure) and that field's rate vanish together
+    /// ([`Condition::NormalField`]): the departure or arrival turns
+    /// tangential to second order, and an interior extremum of the velocity
+    /// leaves the segment through that end. Solved from `prev` with both
+    /// parameters free, both rows replacing the curve's own; accepted as
+    /// [`Self::tangency_point`] accepts.
+    pub(super) fn field_point(
+        &mut self,
+        prev: &Sample,
+        segment: usize,
+        arrival: bool,
+        bound: f64,
+    ) -> Option<Sample> {
+        let step = *self.sys.eval.steps.get(segment)?;
+        // A flow segment only.
+        M::INFO.mappings[step].domain?;
+        let field = |rate| Condition::NormalField {
+            segment,
+            arrival,
+            rate,
+        };
+        let x = self.solve_pair(prev, Some(field(false)), field(true), bound)?;
+        let at = self.examine(x, prev.t.clone()).ok()?;
+        (at.other >= -SAME_EVENT).then_some(at)
     }
 
     /// The solution from `prev` of the mapping equations with `second` in

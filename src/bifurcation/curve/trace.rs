@@ -49,6 +49,13 @@ pub(super) struct Sample {
     /// non-positive a codimension-two end is located.
     pub other_event: f64,
     pub worst_event: Option<ConditionId>,
+    /// How far the companions (the conditions that vanished with the
+    /// curve's own at its start) lie above their floors
+    /// ([`super::condition::COMPANION_SLACK`]; `+∞` without any), and
+    /// which is lowest: where it turns negative a codimension-two end is
+    /// located, at that companion's zero.
+    pub companion: f64,
+    pub companion_id: Option<ConditionId>,
     /// `det(I − DP)`, `det(I + DP)` times the sticks' exit rates
     /// ([`exit_rates`]: cleared of `DP`'s pole where an exit turns
     /// tangential, so that they change sign only where `DP` has the
@@ -113,6 +120,7 @@ impl<M: Model> Tracer<'_, M> {
         };
         let (other, worst) = self.sys.eval.other(&p, &pts);
         let (other_event, worst_event) = self.sys.eval.other_event(&p, &pts);
+        let (companion, companion_id) = self.sys.eval.companion(&p, &pts);
         let (plus, minus, disc) = dp.map_or((f64::NAN, f64::NAN, f64::NAN), |d| {
             let (tr, det) = (d.trace(), d.determinant());
             let rates = exit_rates::<M>(&p, &self.sys.eval.steps, self.sys.eval.shift, &pts);
@@ -129,6 +137,8 @@ impl<M: Model> Tracer<'_, M> {
             worst,
             other_event,
             worst_event,
+            companion,
+            companion_id,
             plus,
             minus,
             disc,
@@ -341,6 +351,20 @@ impl<M: Model> Tracer<'_, M> {
         let turns_real =
             ns && prev.disc < 0.0 && cand.disc.partial_cmp(&0.0) != Some(std::cmp::Ordering::Less);
         let lost = cand.other_event.is_nan() || cand.other_event <= 0.0;
+        // A companion leaving rounding before the other conditions fail
+        // (by the chord's estimate): the end is where it vanishes.
+        let left = cand.companion < 0.0 && prev.companion >= 0.0;
+        let first = |a: f64, b: f64| if a > b { a / (a - b) } else { 0.0 };
+        if left
+            && (!lost
+                || cand.other_event.is_nan()
+                || first(prev.companion, cand.companion)
+                    < first(prev.other_event, cand.other_event))
+        {
+            if let Some(end) = self.companion_end(prev, cand, s_c) {
+                return Some(end);
+            }
+        }
         if lost {
             let (good, bad) = self.locate(prev, s_c, cand.other_event, |s| s.other_event);
             // Named by the smooth margins (the event search's margin of a
@@ -453,6 +477,41 @@ impl<M: Model> Tracer<'_, M> {
             ));
         }
         None
+    }
+
+    /// The codimension-two end where the companion lowest at `cand` (below
+    /// its floor there, above it at `prev`) vanishes: the bracket on its
+    /// floor located, then the point where it and the curve's own
+    /// condition vanish solved from the bracket's good end
+    /// ([`Self::pair_point`]), or that end if the solve fails.
+    fn companion_end(
+        &mut self,
+        prev: &Sample,
+        cand: &Sample,
+        s_c: f64,
+    ) -> Option<(Sample, CurveEndReason)> {
+        let (good, bad) = self.locate(prev, s_c, cand.companion, |s| s.companion);
+        let id = bad
+            .as_ref()
+            .and_then(|b| b.companion_id)
+            .or(cand.companion_id)?;
+        let bound = PAIR_REACH * self.plane_distance(&prev.x, &cand.x);
+        // The interior contact of a tangential arrival or departure leaves
+        // its end where that end's field turns tangential to second order:
+        // there, ahead of `prev` (its depth grows as the cube of the
+        // distance, and falls below its slack some way beyond).
+        let end = self.sys.eval.tangential_end(id);
+        let at = end
+            .and_then(|(segment, arrival)| {
+                self.field_point(prev, segment, arrival, bound.max(Self::TANGENCY_REACH))
+            })
+            .or_else(|| self.pair_point(&good, id, bound))
+            .unwrap_or(good);
+        let reason = CurveEndReason::Codim2 {
+            kind: transition_kind(id.0),
+            boundary: id.2,
+        };
+        Some((at, reason))
     }
 
     /// The distance of `x` and `y` in the parameter plane alone (each

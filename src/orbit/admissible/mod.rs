@@ -36,7 +36,7 @@ use contact::first_contact;
 pub(crate) use stick::{early_end, early_end_extremum, end_touch, stick_exit_rate};
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
-use sink::{Except, Only, Sink, Violated, Worst};
+use sink::{Except, Only, Several, Sink, Violated, Worst};
 
 /// A departure's acceleration into its domain within this fraction of the
 /// acceleration's terms (forcing, the domain's constant, spring and damper)
@@ -312,6 +312,21 @@ pub(crate) fn margin_of<M: Model>(
     };
     walk(sim, structure, points, &mut only);
     only.margin
+}
+
+/// [`margin_of`] for several conditions in one walk: the margin of `ids[i]`
+/// in `margins[i]` (`None` if the walk does not evaluate it). No text, no
+/// allocation.
+pub(crate) fn margins_of<M: Model>(
+    sim: &Simulator<M>,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    ids: &[ConditionId],
+    margins: &mut [Option<f64>],
+) {
+    margins.fill(None);
+    let mut several = Several { ids, margins };
+    walk(sim, structure, points, &mut several);
 }
 
 /// [`worst_margin`] over every condition but the `excluded` ones (a

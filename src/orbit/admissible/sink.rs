@@ -239,6 +239,36 @@ impl Sink for Only {
     }
 }
 
+/// Several conditions, each picked as [`Only`] picks one: the smallest
+/// margin among the entries matching `ids[i]` in `margins[i]` (`None` where
+/// none matches).
+pub(super) struct Several<'a> {
+    pub(super) ids: &'a [ConditionId],
+    pub(super) margins: &'a mut [Option<f64>],
+}
+
+impl Sink for Several<'_> {
+    fn smooth(&self) -> bool {
+        true
+    }
+
+    fn add(
+        &mut self,
+        segment: usize,
+        kind: ViolationKind,
+        boundary: Option<usize>,
+        margin: f64,
+        _text: impl FnOnce() -> String,
+    ) {
+        let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
+        for (id, slot) in self.ids.iter().zip(self.margins.iter_mut()) {
+            if *id == (kind, segment, boundary) && slot.is_none_or(|w| key(margin) < key(w)) {
+                *slot = Some(margin);
+            }
+        }
+    }
+}
+
 /// A condition's identity: kind, segment, boundary.
 pub type ConditionId = (ViolationKind, usize, Option<usize>);
 
