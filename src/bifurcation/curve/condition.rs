@@ -215,10 +215,6 @@ pub(super) struct Evaluator<M: Model> {
     /// ([`Self::stick_ends`]).
     walk_excluded: Vec<ConditionId>,
     stick_ends: usize,
-    /// The companions watched ([`Self::companion`]): the excluded
-    /// conditions other than the curve's own.
-    companions: [ConditionId; MAX_EXCLUDED],
-    companions_len: usize,
 }
 
 /// At most this many conditions vanish with a curve's own.
@@ -274,8 +270,6 @@ impl<M: Model> Evaluator<M> {
             },
             walk_excluded,
             stick_ends,
-            companions: [(ViolationKind::Other, usize::MAX, None); MAX_EXCLUDED],
-            companions_len: 0,
         })
         .map(|mut e: Self| {
             if let Condition::Margin {
@@ -321,14 +315,14 @@ impl<M: Model> Evaluator<M> {
         }
         self.excluded_len = k;
         self.sync_excluded();
-        let mut k = 0;
-        for i in 0..self.companions_len {
-            if self.companions[i] != id {
-                self.companions[k] = self.companions[i];
-                k += 1;
-            }
-        }
-        self.companions_len = k;
+    }
+
+    /// The companions watched ([`Self::companion`]): the excluded
+    /// conditions after the curve's own (`excluded[0]`), once
+    /// [`Self::exclude_companions`] has run; none before, or for a curve
+    /// whose condition is not a margin.
+    fn companions(&self) -> &[ConditionId] {
+        self.excluded.get(1..self.excluded_len).unwrap_or(&[])
     }
 
     /// Whether `id` is the interior contact of a segment whose arrival or
@@ -388,7 +382,7 @@ impl<M: Model> Evaluator<M> {
         points: &[SwitchingPoint],
     ) -> (f64, Option<ConditionId>) {
         let mut best = (f64::INFINITY, None);
-        let n = self.companions_len;
+        let n = self.companions().len();
         if n == 0 || self.sim.set_params(*p).is_err() {
             return best;
         }
@@ -400,10 +394,10 @@ impl<M: Model> Evaluator<M> {
             &self.sim,
             structure,
             points,
-            &self.companions[..n],
+            self.companions(),
             &mut margins[..n],
         );
-        for (&id, margin) in self.companions[..n].iter().zip(&margins[..n]) {
+        for (&id, margin) in self.companions().iter().zip(&margins[..n]) {
             let Some(m) = margin.filter(|m| m.is_finite()) else {
                 continue;
             };
@@ -492,11 +486,6 @@ impl<M: Model> Evaluator<M> {
             }
         }
         self.sync_excluded();
-        // The companions: watched with their slack ([`Self::companion`]).
-        self.companions_len = 1.max(self.excluded_len) - 1;
-        for i in 1..self.excluded_len {
-            self.companions[i - 1] = self.excluded[i];
-        }
     }
 
     /// The condition's value at `(points, p)`: zero on the curve, NaN

@@ -36,7 +36,7 @@ use contact::first_contact;
 pub(crate) use stick::{early_end, early_end_extremum, end_touch, stick_exit_rate};
 
 pub use sink::{ConditionId, Margin, Violation, ViolationKind, SAME_EVENT};
-use sink::{Except, Only, Several, Sink, Violated, Worst};
+use sink::{Except, Several, Sink, Violated, Worst};
 
 /// A departure's acceleration into its domain within this fraction of the
 /// acceleration's terms (forcing, the domain's constant, spring and damper)
@@ -302,16 +302,11 @@ pub(crate) fn margin_of<M: Model>(
     sim: &Simulator<M>,
     structure: &Structure,
     points: &[SwitchingPoint],
-    (kind, segment, boundary): (ViolationKind, usize, Option<usize>),
+    id: ConditionId,
 ) -> Option<f64> {
-    let mut only = Only {
-        kind,
-        segment,
-        boundary,
-        margin: None,
-    };
-    walk(sim, structure, points, &mut only);
-    only.margin
+    let mut margin = [None];
+    margins_of(sim, structure, points, &[id], &mut margin);
+    margin[0]
 }
 
 /// [`margin_of`] for several conditions in one walk: the margin of `ids[i]`

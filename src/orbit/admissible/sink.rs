@@ -207,41 +207,10 @@ impl Sink for Worst {
     }
 }
 
-/// One condition alone, picked by its kind, segment and boundary: the
-/// smallest margin among the matching ones (a two-parameter curve's
-/// condition, `bifurcation::curve`).
-pub(super) struct Only {
-    pub(super) kind: ViolationKind,
-    pub(super) segment: usize,
-    pub(super) boundary: Option<usize>,
-    pub(super) margin: Option<f64>,
-}
-
-impl Sink for Only {
-    fn smooth(&self) -> bool {
-        true
-    }
-
-    fn add(
-        &mut self,
-        segment: usize,
-        kind: ViolationKind,
-        boundary: Option<usize>,
-        margin: f64,
-        _text: impl FnOnce() -> String,
-    ) {
-        if kind == self.kind && segment == self.segment && boundary == self.boundary {
-            let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
-            if self.margin.is_none_or(|w| key(margin) < key(w)) {
-                self.margin = Some(margin);
-            }
-        }
-    }
-}
-
-/// Several conditions, each picked as [`Only`] picks one: the smallest
-/// margin among the entries matching `ids[i]` in `margins[i]` (`None` where
-/// none matches).
+/// Several conditions, each picked by its kind, segment and boundary: the
+/// smallest margin among the entries matching `ids[i]` in `margins[i]`
+/// (`None` where none matches; a two-parameter curve's condition and its
+/// companions, `bifurcation::curve`).
 pub(super) struct Several<'a> {
     pub(super) ids: &'a [ConditionId],
     pub(super) margins: &'a mut [Option<f64>],
