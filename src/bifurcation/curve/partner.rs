@@ -21,7 +21,9 @@ use crate::orbit::admissible::{self, ViolationKind, SAME_EVENT};
 use crate::orbit::structure::Structure;
 
 use super::condition::{condition_scale, COMPANION_SLACK};
-use super::start::{condition_value, second_margins, system, to_point, unknowns};
+use super::start::{
+    condition_value, second_margins, system, to_point, unknowns, vanishing_segment,
+};
 use super::{Condition, Curve, CurveEndReason, CurvePoint, Plane};
 
 /// The step from the codimension-two point onto the second curve, in the
@@ -132,7 +134,13 @@ fn second_condition<M: Model>(
 /// end) or neither side holds, the start is solved instead on the four
 /// lines `step` from the point, each parameter held in turn. `None` if no
 /// second condition is found or no trial converges inside the box, within
-/// ten steps of the point, with the own margin positive.
+/// ten steps of the point, with the own margin positive. A trial whose
+/// motion has a segment shorter than `1e-3` rad is refused, as a line's
+/// start is ([`super::condition_at_transition`]): a segment of no length
+/// solves its mapping equation exactly, so the structure has solutions
+/// where its motion is the reduced one (the segment removed), singular
+/// ones, and the second curve traced on them is the reduced motion's
+/// border under another name, or none (`tests/curve_partner_vanishing.rs`).
 pub fn partner_start<M: Model>(
     base: &M::Params,
     plane: &Plane,
@@ -197,6 +205,12 @@ pub fn partner_start<M: Model>(
             continue;
         }
         let point = to_point(&y);
+        // A segment that stays shrunk to nothing along the second curve:
+        // that curve is the reduced motion's, as a line's start refuses it
+        // (`condition_at_transition`).
+        if vanishing_segment(structure, &point.points) {
+            continue;
+        }
         if own_margin {
             let own = condition_value::<M>(base, plane, Some(structure), &point, curve.condition);
             if !own.is_ok_and(|v| v > 0.0) {

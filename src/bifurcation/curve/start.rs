@@ -19,6 +19,25 @@ use super::{Condition, Curve, CurveEnd, CurveError, CurveOptions, CurvePoint, Pl
 /// A segment shorter than this (in `W t`) at a transition shrinks to nothing there.
 const VANISHING: f64 = 1e-3;
 
+/// Whether a segment of the motion with switching points `points` (of
+/// `structure`) lasts less than [`VANISHING`] (in `W t`; the last one up to
+/// the first a cycle on): a segment shrinking to nothing, on which the
+/// structure's equations degenerate, so that no condition of this motion
+/// has a regular curve there (the reduced motion, the segment removed,
+/// carries it).
+pub(super) fn vanishing_segment(structure: &Structure, points: &[SwitchingPoint]) -> bool {
+    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let n = points.len();
+    (0..n).any(|k| {
+        let next = if k + 1 < n {
+            points[k + 1].phase
+        } else {
+            points[0].phase + shift
+        };
+        (next - points[k].phase).abs() <= VANISHING
+    })
+}
+
 /// How far (in the plane, each parameter over its span) the corrected start
 /// of a curve may lie from the transition it is started at.
 pub(super) const START_REACH: f64 = 1e-4;
@@ -708,10 +727,7 @@ pub fn condition_at_transition<M: Model>(
     // (its arrival and departure turn tangential with it), so no condition
     // of this structure has a regular curve there; the motion on the other
     // side of the transition carries it.
-    if all
-        .iter()
-        .any(|c| c.kind == ViolationKind::Duration && c.margin.abs() <= VANISHING)
-    {
+    if vanishing_segment(structure, points) {
         return None;
     }
     let chosen = pick(true).or_else(|| pick(false))?;
