@@ -12,7 +12,8 @@
 //! scale at its turning point W = 2.66696, Q0 = 192.1287: a condition
 //! within 1e-6 of zero at its start was taken for one vanishing with its
 //! own and never watched again. Stop 42 watches such conditions
-//! (`bifurcation::curve::COMPANION_SLACK`): 0 of 549. The check runs as a
+//! (`bifurcation::curve::COMPANION_SLACK`): 0 of 549 (stop 43: 0 of 535,
+//! s8full having 14 curves fewer). The check runs as a
 //! test on the paper's reference scene (`tests/curve_companion.rs`).
 
 use stickslip::bifurcation::curve::inadmissible_point;

@@ -247,6 +247,20 @@ impl<M: Model> Tracer<'_, M> {
         )
     }
 
+    /// The point where the curve leaves the box from `a`, solved on the
+    /// edge that the predictor `s` along `a`'s tangent crosses first: `None`
+    /// if the predictor stays in the box, if the edge's solve fails or lands
+    /// outside the box, or if the curve does not leave the box there (its
+    /// tangent turned back in).
+    fn edge_past_predictor(&mut self, a: &Sample, s: f64) -> Option<Sample> {
+        let predicted: Vec<f64> = a.x.iter().zip(&a.t).map(|(p, d)| p + s * d).collect();
+        if !self.out_of_box(&predicted) {
+            return None;
+        }
+        let b = self.on_edge(a, &predicted)?.ok()?;
+        (!self.out_of_box(&b.x) && self.on_box_edge_leaving(&b)).then_some(b)
+    }
+
     /// Whether the step from `a` to `b` passes `start` again (phases
     /// compared modulo 2π: the same motion relabelled).
     fn passes_start(&self, start: &Sample, a: &Sample, b: &Sample) -> bool {
@@ -610,6 +624,21 @@ impl<M: Model> Tracer<'_, M> {
                     }
                     Ok((smp, it))
                 });
+            // A step the corrector cannot take whose predictor leaves the
+            // box: the curve may leave through an edge on a bound of the
+            // model's parameters (`d >= 0` on `d = 0`), beyond which nothing
+            // can be evaluated. Solved on the edge from the predictor.
+            let mut through_edge = false;
+            let accepted = match accepted {
+                Err(why) => match self.edge_past_predictor(&prev, ds) {
+                    Some(b) => {
+                        through_edge = true;
+                        Ok((b, 0))
+                    }
+                    None => Err(why),
+                },
+                ok => ok,
+            };
             let (mut cand, iterations) = match accepted {
                 Ok(c) => {
                     last_jump = None;
@@ -629,7 +658,7 @@ impl<M: Model> Tracer<'_, M> {
                 }
             };
             let mut s_c = self.sys.dot_diff(&prev.t, &cand.x, &prev.x);
-            let mut reason = None;
+            let mut reason = through_edge.then_some(CurveEndReason::BoxEdge);
             if self.out_of_box(&cand.x) {
                 match self.on_edge(&prev, &cand.x) {
                     Some(Ok(b)) if !self.out_of_box(&b.x) => {
