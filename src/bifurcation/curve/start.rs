@@ -8,7 +8,7 @@ use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::{Model, ParamSet};
 use crate::orbit::admissible::{self, ViolationKind, SAME_EVENT};
-use crate::orbit::periodic::{PeriodicSolver, SwitchingPoint};
+use crate::orbit::periodic::{arrival, PeriodicSolver, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 use super::condition::{neighbours, rest_margin, Evaluator};
@@ -27,15 +27,8 @@ const VANISHING: f64 = 1e-3;
 /// carries it).
 pub(super) fn vanishing_segment(structure: &Structure, points: &[SwitchingPoint]) -> bool {
     let shift = std::f64::consts::TAU * structure.periods() as f64;
-    let n = points.len();
-    (0..n).any(|k| {
-        let next = if k + 1 < n {
-            points[k + 1].phase
-        } else {
-            points[0].phase + shift
-        };
-        (next - points[k].phase).abs() <= VANISHING
-    })
+    (0..points.len())
+        .any(|k| (arrival(points, k, shift).phase - points[k].phase).abs() <= VANISHING)
 }
 
 /// How far (in the plane, each parameter over its span) the corrected start
