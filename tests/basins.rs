@@ -57,7 +57,7 @@ fn settings(samples: usize) -> BasinSettings {
 fn run(out: &Path, samples: usize, opts: BasinOptions) -> Result<Basins, BasinsError> {
     let x = GridAxis::parse(X).unwrap();
     let v = GridAxis::parse(V).unwrap();
-    run_basins::<Paper>(&params(), &x, &v, &settings(samples), out, &opts)
+    run_basins::<Paper>(&params(), &x, &v, &settings(samples), Some(out), &opts)
 }
 
 /// The stable motions the sweep lists at `W`, each with its states at `W t ≡ 0`.
@@ -246,7 +246,7 @@ fn the_file_is_the_same_on_one_and_two_threads_and_after_resumes() {
     };
     let x = GridAxis::parse(X).unwrap();
     let v = GridAxis::parse(V).unwrap();
-    let e = run_basins::<Paper>(&params(), &x, &v, &other, &cut, &resume).unwrap_err();
+    let e = run_basins::<Paper>(&params(), &x, &v, &other, Some(&cut), &resume).unwrap_err();
     assert!(matches!(e, BasinsError::Mismatch { .. }), "{e}");
     assert!(e.to_string().contains("seed=2"), "{e}");
 }

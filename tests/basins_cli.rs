@@ -83,6 +83,62 @@ fn json_agrees_with_the_file() {
     assert!((sum - 1.0).abs() < 1e-12);
 }
 
+/// Without `--out` no file is written: the same summary goes to stdout,
+/// twice in a row from the same folder, and a plot is drawn from memory;
+/// `--resume` then asks for the file.
+#[test]
+fn without_out_no_file_is_written() {
+    let d = dir("memory");
+    let args: Vec<&str> = basins("unused", &["--json"])
+        .into_iter()
+        .filter(|a| *a != "--out" && *a != "unused")
+        .collect();
+    let plot = d.join("b.svg");
+    let mut with_plot = args.clone();
+    with_plot.extend(["--plot", plot.to_str().unwrap()]);
+    let first = Command::new(BIN)
+        .args(&with_plot)
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let second = Command::new(BIN)
+        .args(&args)
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    assert!(
+        second.status.success(),
+        "{}",
+        String::from_utf8_lossy(&second.stderr)
+    );
+    let files: Vec<_> = fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(files, vec![std::ffi::OsString::from("b.svg")], "{files:?}");
+    let (a, b): (Value, Value) = (
+        serde_json::from_slice(&first.stdout).unwrap(),
+        serde_json::from_slice(&second.stdout).unwrap(),
+    );
+    assert_eq!(a["attractors"], b["attractors"]);
+    assert_eq!(a["file"], Value::Null);
+    let points: u64 = a["attractors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["points"].as_u64().unwrap())
+        .sum();
+    assert_eq!(points, 30);
+    let mut resume = args.clone();
+    resume.push("--resume");
+    fails(&resume, &["--resume needs", "--out FILE"]);
+}
+
 #[test]
 fn bad_input_is_a_clear_error() {
     let d = dir("bad");

@@ -51,7 +51,7 @@ fn a_period_doubling_is_one_classified_event_and_the_doubled_branch_is_followed(
     assert_eq!(pd.born.len(), 1, "{pd:#?}");
     let born = &s.branches[pd.born[0]];
     assert_eq!(born.n, 2);
-    assert_eq!(born.structure, "P_{3_33 4_33 3_33 4_33}");
+    assert_eq!(born.structure, "(P_{3_33 4_33})^{×2}");
     // A point of it away from the bifurcation is a motion of two forcing
     // periods and not of one (simulation, not Newton).
     let q = born

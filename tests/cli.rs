@@ -447,6 +447,20 @@ fn bad_input_is_rejected_with_a_clear_message() {
         &["simulate", "--set", "W=3.7", "--periods", "5"],
         "no periodic motion and no certified NM within 5 forcing periods",
     );
+    // A parameter the model does not have: the free ones are listed.
+    assert_rejected(
+        &["sweep", "--param", "omega=1:2:3"],
+        "`omega` is not a parameter of `paper` (its parameters: m, d, c, V, V1, V2, mus, muk, mu1, mu2, mu3, mu4, g, Q0, W)",
+    );
+    // One a scene fixes: say how to free it.
+    assert_rejected(
+        &["sweep", "--model", "stribeck::pl16", "--param", "W=1:2:3", "--set", "vs=0.3"],
+        "`vs` is fixed to 0.4 in `stribeck::pl16` (free: Q0, W); to vary it, add `vs` to the scene's `free:` list in the model file",
+    );
+    assert_rejected(
+        &["sweep", "--model", "paper::sweep_w", "--param", "Q0=1:2:3"],
+        "`Q0` is fixed to 70 in `paper::sweep_w` (free: W)",
+    );
 }
 
 /// A `--set` of the parameter a command varies would be overwritten

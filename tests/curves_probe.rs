@@ -21,7 +21,8 @@ use stickslip::study::curves::{traced, CurveSet, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::ParamSet;
 
-const BAND: &str = "P_{0_11 2_11 0_11 2_11 0_11 2_11}^5";
+/// Its name: the block `0_11 2_11` three times over five forcing periods.
+const BAND: &str = "(P_{0_11 2_11})^{×3}^5";
 
 /// The box, with the one seed line Q0 = 0.45.
 fn box_opts() -> CurvesOptions {

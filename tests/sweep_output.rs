@@ -17,7 +17,7 @@ use stickslip::output::figure::register;
 use stickslip::output::figure::sweep::{plot_sweep, SweepFigure, STABLE_WIDTH, UNSTABLE_WIDTH};
 use stickslip::output::sweep_table;
 use stickslip::study::sweep::{
-    BifurcationSummary, BranchEndSummary, BranchSample, BranchSummary, MotionSummary, Sweep,
+    BifurcationSummary, BranchEndSummary, BranchSample, BranchSummary, Cut, MotionSummary, Sweep,
     SweepPoint, Transition, TransitionKind,
 };
 
@@ -262,6 +262,13 @@ fn synthetic(param: &str) -> Sweep {
         ],
         branches: branches(),
         bifurcations: bifurcations(),
+        cuts: vec![Cut {
+            value: 2.5,
+            structure: format!("({BB})^{{×2}}"),
+            n: 2,
+            max_period: 1,
+        }],
+        cascades: Vec::new(),
     }
 }
 
@@ -277,8 +284,20 @@ fn json_lists_branches_and_bifurcations_keyed_by_the_parameter() {
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     assert_eq!(
         keys,
-        ["param", "points", "transitions", "branches", "bifurcations"]
+        [
+            "param",
+            "points",
+            "transitions",
+            "branches",
+            "bifurcations",
+            "cuts",
+            "cascades"
+        ]
     );
+    // A branch born by period doubling and not followed, keyed by `W`.
+    assert!(close(&v["cuts"][0]["W"], 2.5));
+    assert_eq!(v["cuts"][0]["N"], 2);
+    assert_eq!(v["cuts"][0]["max_period"], 1);
     // The old keys keep their meaning.
     assert_eq!(v["points"].as_array().unwrap().len(), 5);
     assert!(close(&v["points"][3]["W"], 2.5));

@@ -106,15 +106,21 @@ pub(crate) fn pipeline(
 }
 
 /// Pass 1: the syntax tree; with `file`, the model must be named like it
-/// (`models/NAME.ssm` holds `model NAME`), else an error at the name.
+/// (`models/NAME.ssm` holds `model NAME`), else an error at the name. That
+/// error does not stop the checker: it is carried to pass 2 with the tree,
+/// so that a misnamed file still gets every other error reported.
 #[cfg(feature = "generator")]
-fn parse(tokens: TokenStream, file: Option<&str>) -> Result<parse::ModelAst, Diagnostics> {
+fn parse(
+    tokens: TokenStream,
+    file: Option<&str>,
+) -> Result<(parse::ModelAst, Diagnostics), Diagnostics> {
     let mut diags = Diagnostics::new();
     let ast = parse::parse_model(tokens, &mut diags);
+    let mut misnamed = Diagnostics::new();
     if let (Some(ast), Some(stem)) = (&ast, file) {
         let name = names::bare(&ast.name.to_string()).to_string();
         if name != stem {
-            diags.error(
+            misnamed.error(
                 ast.name.span(),
                 format!(
                     "the model is named `{name}`, but its file is `{stem}.ssm`: \
@@ -124,15 +130,15 @@ fn parse(tokens: TokenStream, file: Option<&str>) -> Result<parse::ModelAst, Dia
         }
     }
     match ast {
-        Some(ast) if diags.is_empty() => Ok(ast),
+        Some(ast) if diags.is_empty() => Ok((ast, misnamed)),
         _ => Err(diags),
     }
 }
 
-/// Pass 2: the checked model.
+/// Pass 2: the checked model; `diags` holds what pass 1 found that does not
+/// stop the checker.
 #[cfg(feature = "generator")]
-fn check(ast: parse::ModelAst) -> Result<Model, Diagnostics> {
-    let mut diags = Diagnostics::new();
+fn check((ast, mut diags): (parse::ModelAst, Diagnostics)) -> Result<Model, Diagnostics> {
     names::check(&ast, &mut diags);
     match check::check(ast, &mut diags) {
         Some(m) if diags.is_empty() => Ok(m),
@@ -145,7 +151,10 @@ fn check(ast: parse::ModelAst) -> Result<Model, Diagnostics> {
 #[cfg(feature = "generator")]
 fn format(tokens: TokenStream) -> Result<String, Diagnostics> {
     match syn::parse2::<syn::File>(tokens) {
-        Ok(file) => Ok(prettyplease::unparse(&file)),
+        Ok(mut file) => {
+            emit::mark_unused(&mut file);
+            Ok(prettyplease::unparse(&file))
+        }
         Err(e) => {
             let mut d = Diagnostics::new();
             d.error(

@@ -61,8 +61,10 @@ fn closing(open: char) -> char {
 }
 
 /// Find why the delimiters of `source` do not balance, as a located error:
-/// a closer with nothing open, a closer of the wrong kind, or an opener that
-/// is never closed. For the last, the opener reported is the one whose
+/// a block comment or a string never closed (at where it starts: it
+/// swallows every delimiter after it, as rustc reports it), a closer with
+/// nothing open, a closer of the wrong kind, or an opener that is never
+/// closed. For the last, the opener reported is the one whose
 /// closer is indented unlike its own line but like the unclosed outer
 /// opener's (the usual forgotten `}`); else the unclosed opener itself.
 /// Strings, character literals and comments are skipped.
@@ -98,6 +100,7 @@ pub fn unbalanced(source: &str, diags: &mut Diagnostics) -> bool {
                 continue;
             }
             '/' if next == Some('*') => {
+                let (start_line, start_col) = (line, col);
                 let mut depth = 0;
                 while i < chars.len() {
                     if chars[i] == '/' && chars.get(i + 1) == Some(&'*') {
@@ -113,9 +116,19 @@ pub fn unbalanced(source: &str, diags: &mut Diagnostics) -> bool {
                     }
                     step(&mut i, &mut line, &mut col);
                 }
+                if depth > 0 {
+                    diags.error_at(
+                        start_line,
+                        start_col,
+                        "unterminated block comment: this `/*` is never closed by a `*/` \
+                         (block comments nest: every `/*` inside needs its own `*/`)",
+                    );
+                    return true;
+                }
                 continue;
             }
             '"' => {
+                let (start_line, start_col) = (line, col);
                 step(&mut i, &mut line, &mut col);
                 while i < chars.len() && chars[i] != '"' {
                     if chars[i] == '\\' {
@@ -124,6 +137,14 @@ pub fn unbalanced(source: &str, diags: &mut Diagnostics) -> bool {
                     if i < chars.len() {
                         step(&mut i, &mut line, &mut col);
                     }
+                }
+                if i >= chars.len() {
+                    diags.error_at(
+                        start_line,
+                        start_col,
+                        "unterminated string: this `\"` is never closed by another `\"`",
+                    );
+                    return true;
                 }
             }
             '\'' if chars.get(i + 2) == Some(&'\'') => {

@@ -44,6 +44,8 @@ pub enum StructureError {
     },
     /// Two stick mappings in a row, or a stick mapping with nowhere to go.
     StickExit(String),
+    /// A repeated block whose power is not `^{×k}` with a whole `k ≥ 1`.
+    Repeat(String),
     /// A period of zero forcing cycles.
     ZeroPeriod,
 }
@@ -71,6 +73,10 @@ impl fmt::Display for StructureError {
             Self::StickExit(name) => write!(
                 f,
                 "the stick mapping {name} must be followed by a mapping that leaves the stick boundary into a domain"
+            ),
+            Self::Repeat(text) => write!(
+                f,
+                "`{text}` is not a repeated structure: write `(P_{{1_11 0_11 2_11}})^{{×4}}` (a block and how many times it repeats, at least 1)"
             ),
             Self::ZeroPeriod => write!(f, "the period N must be at least 1 forcing period"),
         }
@@ -103,8 +109,24 @@ pub enum Exit {
 }
 
 /// The mapping names as written (right to left: the last is applied first).
+/// A block repeated `k` times may be written `(P_{…})^{×k}` (also `^×k`,
+/// `^{xk}`, `^{*k}`): a period-doubling cascade's motions are one block of
+/// mappings repeated, with other switching points in each repetition.
 pub fn written_names(text: &str) -> Result<Vec<&str>, StructureError> {
     let t = text.trim();
+    if let Some(rest) = t.strip_prefix('(') {
+        let (inner, power) = rest
+            .rsplit_once(')')
+            .ok_or_else(|| StructureError::Unbalanced(t.to_string()))?;
+        let k = repetitions(power).ok_or_else(|| StructureError::Repeat(t.to_string()))?;
+        let block = written_names(inner)?;
+        return Ok(block
+            .iter()
+            .copied()
+            .cycle()
+            .take(block.len() * k)
+            .collect());
+    }
     let inner = match t.strip_prefix("P_{").or_else(|| t.strip_prefix("P{")) {
         Some(rest) => rest
             .strip_suffix('}')
@@ -119,6 +141,68 @@ pub fn written_names(text: &str) -> Result<Vec<&str>, StructureError> {
         return Err(StructureError::Empty);
     }
     Ok(names)
+}
+
+/// `k` of a power `^{×k}` (or `^×k`, `^{xk}`, `^{*k}`, `^k`), at least 1.
+fn repetitions(power: &str) -> Option<usize> {
+    let p = power.trim().strip_prefix('^')?.trim();
+    let p = match p.strip_prefix('{') {
+        Some(inner) => inner.strip_suffix('}')?.trim(),
+        None => p,
+    };
+    let p = p
+        .strip_prefix('×')
+        .or_else(|| p.strip_prefix('x'))
+        .or_else(|| p.strip_prefix('*'))
+        .unwrap_or(p)
+        .trim();
+    p.parse::<usize>().ok().filter(|&k| k >= 1)
+}
+
+/// The mapping names written right to left (`names`, in written order),
+/// compactly: a sequence that is one block repeated `k ≥ 2` times is
+/// written `(P_{block})^{×k}` with the shortest such block, any other as
+/// `P_{…}`. [`written_names`] reads both back.
+pub fn notation(names: &[&str]) -> String {
+    let m = names.len();
+    let block = (1..m)
+        .filter(|b| m % b == 0)
+        .find(|&b| names.chunks(b).all(|c| c == &names[..b]));
+    match block {
+        Some(b) => format!("(P_{{{}}})^{{×{}}}", names[..b].join(" "), m / b),
+        None => format!("P_{{{}}}", names.join(" ")),
+    }
+}
+
+/// How many times the block of a compact notation `(P_{…})^{×k}` repeats
+/// (`k`), or 1 for a structure written out.
+pub fn repeats(notation: &str) -> usize {
+    let t = notation.trim();
+    if !t.starts_with('(') {
+        return 1;
+    }
+    t.rsplit_once(')')
+        .and_then(|(_, power)| repetitions(power))
+        .unwrap_or(1)
+}
+
+/// The forcing periods a structure's notation implies when none is given:
+/// one per repetition of a compact block (a period-doubling cascade's
+/// motion of `N` periods is its period-one block repeated `N` times),
+/// else 1.
+pub fn implied_periods(notation: &str) -> u32 {
+    u32::try_from(repeats(notation)).unwrap_or(u32::MAX)
+}
+
+/// A structure's name with its period `N`: `P_{…}^N`, the `^N` left out
+/// where the notation implies it ([`implied_periods`]: `P_{…}` of one
+/// forcing period, `(P_{…})^{×k}` of `k`).
+pub fn with_periods(notation: &str, n: u32) -> String {
+    if n == implied_periods(notation) {
+        notation.to_string()
+    } else {
+        format!("{notation}^{n}")
+    }
 }
 
 /// Resolve mapping names given in application order against the model's
@@ -219,5 +303,51 @@ mod tests {
             written_names("a b}"),
             Err(StructureError::Unbalanced(_))
         ));
+    }
+
+    #[test]
+    fn a_repeated_block_is_written_compactly_and_read_back() {
+        let names = ["a", "b", "a", "b", "a", "b"];
+        assert_eq!(notation(&names), "(P_{a b})^{×3}");
+        assert_eq!(written_names("(P_{a b})^{×3}").unwrap(), names);
+        for same in [
+            "(P_{a b})^×3",
+            "( P{a b} )^{x3}",
+            "(a b)^{*3}",
+            "(P_{a b})^3",
+        ] {
+            assert_eq!(written_names(same).unwrap(), names, "{same}");
+        }
+        // No repetition, or a block only in part: written out in full.
+        assert_eq!(notation(&["a", "b", "c"]), "P_{a b c}");
+        assert_eq!(notation(&["a", "b", "a"]), "P_{a b a}");
+        assert_eq!(notation(&["a"]), "P_{a}");
+        // The shortest block: four times `a b`, not twice `a b a b`.
+        assert_eq!(
+            notation(&["a", "b", "a", "b", "a", "b", "a", "b"]),
+            "(P_{a b})^{×4}"
+        );
+        for bad in [
+            "(P_{a b})^{×0}",
+            "(P_{a b})^{×}",
+            "(P_{a b})",
+            "(P_{a b})^{×2.5}",
+        ] {
+            assert!(
+                matches!(written_names(bad), Err(StructureError::Repeat(_))),
+                "{bad}"
+            );
+        }
+        assert!(matches!(
+            written_names("(P_{a b}^{×2}"),
+            Err(StructureError::Unbalanced(_))
+        ));
+        // The period: implied by the repetitions, written where it is not.
+        assert_eq!(implied_periods("(P_{a b})^{×4}"), 4);
+        assert_eq!(implied_periods("P_{a b}"), 1);
+        assert_eq!(with_periods("(P_{a b})^{×4}", 4), "(P_{a b})^{×4}");
+        assert_eq!(with_periods("(P_{a b})^{×4}", 8), "(P_{a b})^{×4}^8");
+        assert_eq!(with_periods("P_{a b}", 1), "P_{a b}");
+        assert_eq!(with_periods("P_{a b}", 2), "P_{a b}^2");
     }
 }

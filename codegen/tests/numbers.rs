@@ -465,6 +465,14 @@ fn file_named_unlike_its_model_is_located_at_the_name() {
     );
     let path = temp_file("coulomb.ssm", COULOMB.as_bytes());
     generate_file(&path, "models/coulomb.ssm").expect("named after its model");
+    // The name does not hide the model's other errors: a law that is not
+    // affine in `v` is reported with it.
+    let src = edit(COULOMB, &[("mu + k * (v - V);", "mu + k * v * v;")]);
+    let path = temp_file("b2.ssm", src.as_bytes());
+    let errs = parse_report(&generate_file(&path, "b2.ssm").unwrap_err());
+    assert_eq!(errs.len(), 2, "{errs:?}");
+    assert!(errs[0].0.contains("but its file is `b2.ssm`"), "{errs:?}");
+    assert!(errs[1].0.contains("is not affine in `v`"), "{errs:?}");
 }
 
 // -------------------------------------------------------------- messages
@@ -516,6 +524,34 @@ fn unbalanced_brace_is_located_at_the_unclosed_delimiter() {
         &src,
         "13:44",
         "mismatched closing `]`: the `(` at 13:38 is still open",
+    );
+}
+
+#[test]
+fn an_unterminated_comment_or_string_is_named_where_it_starts() {
+    // A block comment opened on line 7 and never closed swallows the
+    // model's closing brace: the comment is the error, not the brace.
+    let src = edit(
+        COULOMB,
+        &[("param V = 1.0;", "param V = 1.0; /* belt /* speed */")],
+    );
+    assert_error(
+        &src,
+        "9:20",
+        "unterminated block comment: this `/*` is never closed by a `*/` \
+         (block comments nest: every `/*` inside needs its own `*/`)",
+    );
+    let src = edit(
+        COULOMB,
+        &[(
+            "\n}\n",
+            "\n    scene s { free: W; structures: \"P_{0_11 1_11}; }\n}\n",
+        )],
+    );
+    assert_error(
+        &src,
+        "15:36",
+        "unterminated string: this `\"` is never closed by another `\"`",
     );
 }
 

@@ -110,7 +110,7 @@ impl From<SweepError> for Failure {
     fn from(e: SweepError) -> Self {
         match e {
             SweepError::Orbit(e) => e.into(),
-            SweepError::Params(_) | SweepError::UnknownParam(_) => Self::new(Kind::Param, e),
+            SweepError::Params(_) => Self::new(Kind::Param, e),
             SweepError::Range(_) | SweepError::Options(_) => Self::new(Kind::Input, e),
         }
     }

@@ -15,6 +15,7 @@ use stickslip::output::history::History;
 use stickslip::output::report::Report;
 use stickslip::output::settled::{settle, Settled, Window};
 use stickslip::Model;
+use stickslip_codegen::structure::implied_periods;
 
 use crate::command::{params, settings, with_model, Command};
 use crate::failure::{Failure, Kind};
@@ -291,15 +292,17 @@ impl Command for Orbit {
 /// `stickslip orbit`: Newton on `structure` (applied right to left), seeded
 /// from `guess = (W t, x)` or by simulation.
 #[pyfunction]
-#[pyo3(signature = (model, set, structure, periods = 1, guess = None))]
+#[pyo3(signature = (model, set, structure, periods = None, guess = None))]
 pub fn orbit(
     py: Python<'_>,
     model: &str,
     set: Vec<(String, f64)>,
     structure: String,
-    periods: u32,
+    periods: Option<u32>,
     guess: Option<(f64, f64)>,
 ) -> PyResult<Answer> {
+    // As on the command line: 1, or `k` for a block repeated `k` times.
+    let periods = periods.unwrap_or_else(|| implied_periods(&structure));
     let cmd = Orbit {
         set,
         structure,

@@ -104,20 +104,23 @@ class Model:
         self,
         structure: str,
         guess: Optional[Sequence[Number]] = None,
-        periods: int = 1,
+        periods: Optional[int] = None,
         **params: Number,
     ) -> Motion:
         """Solve ``structure`` (``"P_{3_31 0_11 3_13 4_33}"``, applied right to
-        left) for its periodic motion of ``periods`` forcing periods by Newton,
-        from ``guess = (Wt, x)`` (its first switching point) or seeded by
-        simulation (``stickslip orbit``)."""
+        left; a repeated block as ``"(P_{1_11 0_11 2_11})^{×4}"``) for its
+        periodic motion of ``periods`` forcing periods (default 1, or ``k``
+        for a block repeated ``k`` times) by Newton, from ``guess = (Wt, x)``
+        (its first switching point) or seeded by simulation (``stickslip
+        orbit``)."""
         g = None
         if guess is not None:
             vals = [float(u) for u in guess]
             if len(vals) != 2:
                 raise InputError(f"guess {tuple(guess)!r}: expected (Wt, x)")
             g = (vals[0], vals[1])
-        return _motion(_native.orbit(self.name, _pairs(params), str(structure), int(periods), g))
+        n = None if periods is None else int(periods)
+        return _motion(_native.orbit(self.name, _pairs(params), str(structure), n, g))
 
     def sweep(
         self,
@@ -127,6 +130,7 @@ class Model:
         every: Optional[int] = None,
         unstable: bool = True,
         max_mappings: Optional[int] = None,
+        max_period: Optional[int] = None,
         **fixed: Number,
     ) -> Sweep:
         """Follow the periodic motions along ``param`` over ``values`` (an
@@ -135,13 +139,16 @@ class Model:
         ``starts``/``every``: the global search for coexisting motions;
         ``unstable=False`` gives the view without unstable motions;
         ``max_mappings``: follow no branch of a motion of more mappings
-        (a period-doubling cascade into chaos otherwise follows hundreds)."""
+        (a period-doubling cascade into chaos otherwise follows hundreds);
+        ``max_period``: follow no branch born by period doubling of more
+        forcing periods (default 16; 0: no limit), listed in ``cuts``; the
+        cascades and their accumulation points are in ``cascades``."""
         grid = np.asarray(list(values) if not isinstance(values, np.ndarray) else values, dtype=float)
         if grid.ndim != 1:
             raise InputError(f"values: expected a 1-d sequence, got shape {grid.shape}")
         data = _native.sweep(
             self.name, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable),
-            max_mappings,
+            max_mappings, max_period,
         )
         return Sweep(json.loads(data))
 

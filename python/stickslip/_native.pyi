@@ -32,7 +32,7 @@ def orbit(
     model: str,
     set: Pairs,
     structure: str,
-    periods: int = 1,
+    periods: Optional[int] = None,
     guess: Optional[Tuple[float, float]] = None,
 ) -> Tuple[str, Optional[str], List[str], Trajectory]: ...
 def sweep(
@@ -44,6 +44,7 @@ def sweep(
     every: Optional[int] = None,
     unstable: bool = True,
     max_mappings: Optional[int] = None,
+    max_period: Optional[int] = None,
 ) -> str: ...
 def orbit_diagram(
     model: str,

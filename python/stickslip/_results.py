@@ -179,8 +179,11 @@ class Description(Result):
 class Sweep(Result):
     """A sweep of one parameter (``stickslip sweep --json``): ``param``, the
     grid ``values``, ``points`` (the motions at each value), ``branches``
-    (followed by arclength continuation, unstable parts kept), ``transitions``
-    and ``bifurcations``, each a list of dicts as in the CLI's JSON."""
+    (followed by arclength continuation, unstable parts kept), ``transitions``,
+    ``bifurcations``, ``cuts`` (branches born by period doubling beyond
+    ``max_period``, not followed) and ``cascades`` (the period-doubling
+    cascades with their accumulation points), each a list of dicts as in the
+    CLI's JSON."""
 
     def __init__(self, data: Dict[str, Any]) -> None:
         super().__init__(data)
@@ -190,6 +193,8 @@ class Sweep(Result):
         self.branches: List[Dict[str, Any]] = data["branches"]
         self.transitions: List[Dict[str, Any]] = data["transitions"]
         self.bifurcations: List[Dict[str, Any]] = data["bifurcations"]
+        self.cuts: List[Dict[str, Any]] = data.get("cuts", [])
+        self.cascades: List[Dict[str, Any]] = data.get("cascades", [])
 
     def branch_arrays(self, branch: int) -> Dict[str, np.ndarray]:
         """Branch ``branch``'s points as arrays: the parameter, ``start_Wt``,

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use stickslip::output::basins_summary;
-use stickslip::output::figure::basins::plot_basins;
+use stickslip::output::figure::basins::plot_basin_file;
 use stickslip::study::basins::{run_basins, BasinOptions, BasinSettings, Basins};
 use stickslip::study::map::GridAxis;
 use stickslip::Model;
@@ -51,10 +51,12 @@ pub struct BasinsArgs {
     /// settles (0: call it `unsettled` without one).
     #[arg(long, default_value_t = stickslip::study::basins::LYAPUNOV_PERIODS)]
     lyapunov: u32,
-    /// The basin file, written start by start as they finish.
-    #[arg(long, value_name = "FILE", default_value = "basins.csv")]
-    out: PathBuf,
-    /// Continue an interrupted run from its output file.
+    /// The basin file, written start by start as they finish, so that a run
+    /// killed at any moment resumes (`--resume`); never overwritten.
+    /// Without it no file is written.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Continue an interrupted run from its file (`--out`).
     #[arg(long)]
     resume: bool,
     /// Draw the basins into FILE (.svg or .png).
@@ -96,25 +98,27 @@ impl WithModel for BasinsCmd {
             progress: !a.json,
             max_points: None,
         };
-        let basins = run_basins::<M>(&params, &x, &v, &settings, &a.out, &opts)?;
+        let basins = run_basins::<M>(&params, &x, &v, &settings, a.out.as_deref(), &opts)?;
         if let Some(plot) = &a.plot {
-            plot_basins(&a.out, plot)?;
+            plot_basin_file(&basins.to_file(), plot)?;
         }
         let stdout = if a.json {
-            json(&basins, &a.out)?
+            basins_summary::json(&basins)?
         } else {
-            text(&basins, &a.out)
+            text(&basins)
         };
         Ok(Outcome::ok(stdout))
     }
 }
 
 /// The summary: the run, then one line per attractor.
-fn text(b: &Basins, out: &std::path::Path) -> String {
+fn text(b: &Basins) -> String {
     let h = &b.header;
     let mut s = format!(
         "{}: {} of {} starts ({} computed now, {} already done) in {:.2} s{}\n",
-        out.display(),
+        b.file
+            .as_ref()
+            .map_or("basins".to_string(), |f| f.display().to_string()),
         b.already_done + b.computed,
         h.len(),
         b.computed,
@@ -146,8 +150,4 @@ fn text(b: &Basins, out: &std::path::Path) -> String {
         ));
     }
     s
-}
-
-fn json(b: &Basins, out: &std::path::Path) -> Result<String, CliError> {
-    Ok(basins_summary::json(b, out)?)
 }

@@ -11,6 +11,7 @@ use stickslip::orbit::structure::Structure;
 use stickslip::output::history::History;
 use stickslip::output::report::Report;
 use stickslip::Model;
+use stickslip_codegen::structure::implied_periods;
 
 use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
 use super::error::CliError;
@@ -28,9 +29,10 @@ pub struct OrbitArgs {
     /// Parameter values, e.g. `--set W=3.7,Q0=70`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
-    /// Forcing periods per cycle (the period N of the motion).
-    #[arg(long, default_value_t = 1)]
-    periods: u32,
+    /// Forcing periods per cycle (the period N of the motion); by default
+    /// 1, or `k` for a repeated block `(P_{…})^{×k}`.
+    #[arg(long)]
+    periods: Option<u32>,
     /// The first switching point `W t,x` (the start of the first mapping
     /// applied); the others follow by simulation. Without it the structure
     /// is seeded by simulation.
@@ -48,10 +50,13 @@ pub fn run(args: OrbitArgs) -> Result<Outcome, CliError> {
         .guess
         .map(|g| parse_numbers::<2>(&g, "W t,x").map(|[phase, x]| (phase, x)))
         .transpose()?;
+    let periods = args
+        .periods
+        .unwrap_or_else(|| implied_periods(&args.structure));
     let orbit = Orbit {
         set,
         structure: args.structure,
-        periods: args.periods,
+        periods,
         guess,
         output: args.output,
     };

@@ -51,6 +51,12 @@ pub struct SweepArgs {
     /// simulation past a transition finds them.
     #[arg(long, value_name = "M")]
     max_mappings: Option<usize>,
+    /// Follow no branch born by period doubling whose period exceeds N
+    /// forcing periods (0: no limit); each one not followed is listed as
+    /// cut. The cascade's accumulation point is estimated from the
+    /// doublings located.
+    #[arg(long, value_name = "N", default_value_t = stickslip::study::sweep::MAX_PERIOD)]
+    max_period: u32,
 }
 
 /// The sweep as text or JSON, and its figure.
@@ -80,6 +86,7 @@ impl WithModel for SweepCmd {
             starts: self.args.starts,
             every: self.args.every,
             max_mappings: self.args.max_mappings,
+            max_period: (self.args.max_period > 0).then_some(self.args.max_period),
             ..SweepOptions::default()
         };
         let sw = sweep::<M>(base, &name, from, to, count, opts)?;

@@ -50,7 +50,10 @@ pub mod smooth;
 pub use info::{
     Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo, Side,
 };
-pub use oscillator::{Coefficients, ForcedResponse, FrictionOscillator, Oscillator, Regime};
+pub use oscillator::{
+    forced_rounding, set_forced_rounding, Coefficients, ForcedResponse, ForcedRounding,
+    FrictionOscillator, Oscillator, Regime,
+};
 pub use param::{ParamError, ParamSet};
 pub use piecewise::{MappingEval, Model, Phase, StickForces};
 pub use registry::{Entry, ModelVisitor};

@@ -2,6 +2,8 @@
 //! ([`Oscillator`]) and the effective coefficients of a domain, with its
 //! damping regime (SPEC §1, Eq. A.1).
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use serde::Serialize;
 
 use super::info::Identity;
@@ -55,11 +57,55 @@ impl Coefficients {
         let detuning = self.c - w * w;
         let damping = self.two_d * w;
         let den = detuning * detuning + damping * damping;
+        let (cos, sin) = match forced_rounding() {
+            ForcedRounding::Quotient => (
+                osc.amplitude * detuning / den,
+                damping * osc.amplitude / den,
+            ),
+            ForcedRounding::Reciprocal => {
+                let scale = 1.0 / den;
+                (
+                    osc.amplitude * detuning * scale,
+                    damping * osc.amplitude * scale,
+                )
+            }
+        };
         ForcedResponse {
-            cos: osc.amplitude * detuning / den,
-            sin: damping * osc.amplitude / den,
+            cos,
+            sin,
             offset: -self.b / self.c,
         }
+    }
+}
+
+/// How [`Coefficients::forced_response`] rounds its quotients: `x / den`
+/// (the default, as the generated flows do) or `x · (1 / den)`. The two
+/// differ in the last bit. No result of the library may depend on which:
+/// the perturbation check (`tests/perturbation.rs`) runs the sweep, curve
+/// and map cases both ways and with every parameter moved by a few ulps,
+/// and requires the same structures, transitions and curves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ForcedRounding {
+    /// `x / den`.
+    Quotient,
+    /// `x · (1 / den)`.
+    Reciprocal,
+}
+
+static RECIPROCAL: AtomicBool = AtomicBool::new(false);
+
+/// The process-wide [`ForcedRounding`] (for the perturbation check; the
+/// default is [`ForcedRounding::Quotient`]).
+pub fn set_forced_rounding(r: ForcedRounding) {
+    RECIPROCAL.store(r == ForcedRounding::Reciprocal, Ordering::Relaxed);
+}
+
+/// The process-wide [`ForcedRounding`].
+pub fn forced_rounding() -> ForcedRounding {
+    if RECIPROCAL.load(Ordering::Relaxed) {
+        ForcedRounding::Reciprocal
+    } else {
+        ForcedRounding::Quotient
     }
 }
 

@@ -38,7 +38,7 @@ pub enum ParamError {
     },
     /// A parameter the scene folded into a constant at build time.
     #[error(
-        "`{name}` is fixed to {value} in `{model}` (free: {free}); use the full model to change it"
+        "`{name}` is fixed to {value} in `{model}` (free: {free}); to vary it, add `{name}` to the scene's `free:` list in the model file"
     )]
     Fixed {
         /// Parameter name.
@@ -106,11 +106,20 @@ pub trait ParamSet: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync +
         for &(name, value) in pairs {
             match Self::index_of(name) {
                 Some(i) => p.set(i, value),
-                None => return Err(unknown_or_fixed(info, name)),
+                None => return Err(ParamError::not_free(info, name)),
             }
         }
         p.check()?;
         Ok(p)
+    }
+}
+
+impl ParamError {
+    /// `name` is not a free parameter of `info`'s model or scene: fixed by
+    /// the scene ([`ParamError::Fixed`]) or unknown ([`ParamError::Unknown`]),
+    /// each listing the free parameters.
+    pub fn not_free(info: &Identity, name: &str) -> Self {
+        unknown_or_fixed(info, name)
     }
 }
 

@@ -170,7 +170,8 @@ impl Structure {
         )
     }
 
-    /// The paper's notation, `P_{σm … σ1}`.
+    /// The paper's notation, `P_{σm … σ1}`; a block repeated `k ≥ 2`
+    /// times (a period-doubling cascade's motions) as `(P_{block})^{×k}`.
     pub fn notation(&self, info: &ModelInfo) -> String {
         let names: Vec<&str> = self
             .steps
@@ -178,7 +179,14 @@ impl Structure {
             .rev()
             .map(|&i| info.mappings[i].name)
             .collect();
-        format!("P_{{{}}}", names.join(" "))
+        grammar::notation(&names)
+    }
+
+    /// Its name with its period: [`Structure::notation`], with `^N` where
+    /// the notation does not imply `N` (`P_{…}^2`; `(P_{…})^{×8}` is a
+    /// motion of 8 forcing periods).
+    pub fn label(&self, info: &ModelInfo) -> String {
+        grammar::with_periods(&self.notation(info), self.periods)
     }
 }
 

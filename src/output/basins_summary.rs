@@ -1,8 +1,6 @@
 //! What a basin run found, as the JSON of `stickslip basins --json` (the
 //! Python package's `Basins.to_dict()` is the same document).
 
-use std::path::Path;
-
 use serde_json::json;
 
 use crate::study::basins::Basins;
@@ -10,7 +8,7 @@ use crate::study::basins::Basins;
 /// `{"model", "params", "phase", "x", "v", "samples", "seed", "file",
 /// "complete", "attractors"}`: the run's settings, the basin file `out`, and
 /// each attractor with its grid share and basin stability.
-pub fn json(b: &Basins, out: &Path) -> Result<String, serde_json::Error> {
+pub fn json(b: &Basins) -> Result<String, serde_json::Error> {
     let h = &b.header;
     let params: serde_json::Map<String, serde_json::Value> = h
         .params
@@ -25,7 +23,7 @@ pub fn json(b: &Basins, out: &Path) -> Result<String, serde_json::Error> {
         "v": {"from": h.v.from, "to": h.v.to, "count": h.v.count},
         "samples": h.samples,
         "seed": h.seed,
-        "file": out.display().to_string(),
+        "file": b.file.as_ref().map(|f| f.display().to_string()),
         "complete": b.complete,
         "attractors": b.attractors,
     });

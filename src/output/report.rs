@@ -380,7 +380,7 @@ impl Report {
             .map(|&k| info.mappings[k].name)
             .collect();
         Report::Autonomous(AutonomousReport {
-            structure: format!("P_{{{}}}", names.join(" ")),
+            structure: stickslip_codegen::structure::notation(&names),
             x: a.x,
             v: a.v,
             onset: a.onset,

@@ -6,7 +6,10 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 
 use crate::bifurcation::TransitionKind;
-use crate::study::sweep::{BifurcationSummary, BranchSample, BranchSummary, Sweep};
+use crate::study::sweep::{
+    BifurcationSummary, BranchSample, BranchSummary, Cascade, Sweep, FEIGENBAUM_DELTA,
+};
+use stickslip_codegen::structure::with_periods;
 
 /// The stretches of a branch along which its motion is stable or unstable.
 ///
@@ -135,15 +138,6 @@ fn apart(value: f64, x: f64, phase: f64, p: &BranchSample) -> f64 {
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
-/// `P_{...}` with `^N` when `N > 1`.
-fn with_periods(structure: &str, n: u32) -> String {
-    if n > 1 {
-        format!("{structure}^{n}")
-    } else {
-        structure.to_string()
-    }
-}
-
 /// `+0.600000+0.800000i`.
 fn complex([re, im]: [f64; 2]) -> String {
     format!("{re:+.6}{im:+.6}i")
@@ -188,6 +182,21 @@ pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str, unstable
             ));
         }
     }
+    if !sweep.cuts.is_empty() {
+        out.push_str("\ncut (born by period doubling, longer than --max-period):\n");
+        for c in &sweep.cuts {
+            out.push_str(&format!(
+                "  {name} = {:<18.12} {} not followed: period {} > {}\n",
+                c.value,
+                with_periods(&c.structure, c.n),
+                c.n,
+                c.max_period
+            ));
+        }
+    }
+    for c in &sweep.cascades {
+        out.push_str(&cascade_block(name, c));
+    }
     let shown: Vec<(&BranchSummary, Vec<Run>)> = sweep
         .branches
         .iter()
@@ -219,6 +228,38 @@ pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str, unstable
             "  {name} = {:<10.6} {}\n",
             p.value,
             names.join("  +  ")
+        ));
+    }
+    out
+}
+
+/// A period-doubling cascade: its doublings, their spacing ratios, and
+/// the accumulation point they extrapolate to.
+fn cascade_block(name: &str, c: &Cascade) -> String {
+    let mut out = String::from("\nperiod-doubling cascade:\n");
+    for d in &c.doublings {
+        out.push_str(&format!(
+            "  {name} = {:<18.12} period {} -> {}\n",
+            d.value,
+            d.n,
+            2 * d.n
+        ));
+    }
+    if !c.ratios.is_empty() {
+        let ratios: Vec<String> = c.ratios.iter().map(|r| format!("{r:.4}")).collect();
+        out.push_str(&format!(
+            "  spacing ratios {} (Feigenbaum's δ = {FEIGENBAUM_DELTA:.4})\n",
+            ratios.join(", ")
+        ));
+    }
+    if let Some(a) = c.accumulation {
+        out.push_str(&format!(
+            "  accumulation {name} ≈ {a:.10} (from the last ratio)\n"
+        ));
+    }
+    if let Some(a) = c.accumulation_feigenbaum {
+        out.push_str(&format!(
+            "  accumulation {name} ≈ {a:.10} (with Feigenbaum's δ)\n"
         ));
     }
     out
@@ -276,7 +317,7 @@ fn branch_block(name: &str, b: &BranchSummary, runs: &[Run]) -> String {
 }
 
 /// The keys of the objects that also carry the parameter's value.
-const KEYS: [&str; 16] = [
+const KEYS: [&str; 17] = [
     "motions",
     "from",
     "to",
@@ -293,6 +334,7 @@ const KEYS: [&str; 16] = [
     "eigenvalue",
     "branch",
     "born",
+    "max_period",
 ];
 
 fn clash(name: &str) -> serde_json::Error {
@@ -342,7 +384,10 @@ struct TransitionFields<'a> {
 /// `start_x`, `eigenvalues`, `stable`, and `ends` with `reason` and, where
 /// they apply, `boundary` and `detail`); `bifurcations` (the value, `kind`,
 /// `structure`, `N`, `eigenvalue`, `branch`, `born`, `start_Wt`,
-/// `start_x`). A parameter named like one of these keys is an error.
+/// `start_x`); `cuts` (the value, `structure`, `N`, `max_period`: branches
+/// born by period doubling and not followed); `cascades` (`doublings` with
+/// `value` and `N`, `ratios`, `accumulation`, `accumulation_feigenbaum`).
+/// A parameter named like one of these keys is an error.
 pub fn json(sweep: &Sweep) -> Result<String, serde_json::Error> {
     let name = &sweep.param;
     if KEYS.contains(&name.as_str()) {
@@ -405,12 +450,19 @@ pub fn json(sweep: &Sweep) -> Result<String, serde_json::Error> {
         .iter()
         .map(|f| keyed(name, f.value, f))
         .collect::<Result<Vec<_>, _>>()?;
+    let cuts = sweep
+        .cuts
+        .iter()
+        .map(|c| keyed(name, c.value, c))
+        .collect::<Result<Vec<_>, _>>()?;
     let doc = serde_json::json!({
         "param": name,
         "points": points,
         "transitions": transitions,
         "branches": branches,
         "bifurcations": bifurcations,
+        "cuts": cuts,
+        "cascades": sweep.cascades,
     });
     serde_json::to_string_pretty(&doc)
 }

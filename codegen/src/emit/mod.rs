@@ -1,6 +1,7 @@
 //! Last pass: equations → Rust tokens. Pure: every fact it needs was
 //! established by [`crate::expand`] and [`crate::equations`]; it cannot fail.
 //!
+//! * `arguments` — arguments a model's functions do not use, marked `_name`;
 //! * `expression` — graph nodes → straight-line Rust;
 //! * `params` — the `Params` struct and its `ParamSet` impl;
 //! * `info` — the static `INFO` tables;
@@ -10,6 +11,7 @@
 //! * [`registry`] — around the models: the module wrapper both drivers use
 //!   and the catalogue of the compiled-in models (`ALL`, `visit`).
 
+mod arguments;
 mod expression;
 mod flow;
 mod info;
@@ -23,6 +25,7 @@ use quote::quote;
 
 use crate::equations::{Equations, Generation, MainEquations};
 use crate::expand::Header;
+pub use arguments::mark_unused;
 use expression::doc1;
 
 /// Options of one generation run.

@@ -8,7 +8,7 @@ use std::sync::atomic::AtomicU64;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use stickslip::output::basins_summary;
-use stickslip::study::basins::{run_basins_counting, BasinFile, BasinOptions, BasinSettings};
+use stickslip::study::basins::{run_basins_counting, BasinOptions, BasinSettings};
 use stickslip::study::map::GridAxis;
 use stickslip::Model;
 
@@ -57,13 +57,12 @@ impl Command for Basins<'_> {
             &self.x,
             &self.v,
             &self.settings,
-            &self.out,
+            Some(&self.out),
             &opts,
             Some(self.counter),
         )?;
-        let json = basins_summary::json(&found, &self.out)?;
-        let mut starts = BasinFile::read(&self.out)?.starts;
-        starts.sort_by_key(|s| s.index);
+        let json = basins_summary::json(&found)?;
+        let starts = &found.starts;
         // Every start's attractor is in the summary, which is made of them.
         let id = |name: &str| {
             found
@@ -79,7 +78,7 @@ impl Command for Basins<'_> {
                 })
         };
         let mut a: Answer = (json, Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for s in &starts {
+        for s in starts {
             a.1.push(s.x);
             a.2.push(s.v);
             a.3.push(id(&s.attractor)?);

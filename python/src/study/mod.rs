@@ -60,6 +60,7 @@ struct Sweep {
     every: usize,
     unstable: bool,
     max_mappings: Option<usize>,
+    max_period: Option<u32>,
 }
 
 impl Command for Sweep {
@@ -69,6 +70,7 @@ impl Command for Sweep {
             starts: self.starts,
             every: self.every,
             max_mappings: self.max_mappings,
+            max_period: self.max_period,
             ..SweepOptions::default()
         };
         let base = params::<M>(&self.set)?;
@@ -82,7 +84,7 @@ impl Command for Sweep {
 // One argument per Python keyword.
 #[allow(clippy::too_many_arguments)]
 #[pyfunction]
-#[pyo3(signature = (model, set, name, values, starts = None, every = None, unstable = true, max_mappings = None))]
+#[pyo3(signature = (model, set, name, values, starts = None, every = None, unstable = true, max_mappings = None, max_period = None))]
 pub fn sweep(
     py: Python<'_>,
     model: &str,
@@ -93,6 +95,7 @@ pub fn sweep(
     every: Option<usize>,
     unstable: bool,
     max_mappings: Option<usize>,
+    max_period: Option<u32>,
 ) -> PyResult<String> {
     let defaults = SweepOptions::default();
     let cmd = Sweep {
@@ -103,6 +106,12 @@ pub fn sweep(
         every: every.unwrap_or(defaults.every),
         unstable,
         max_mappings,
+        // 0: no limit, as on the command line.
+        max_period: match max_period {
+            None => defaults.max_period,
+            Some(0) => None,
+            Some(n) => Some(n),
+        },
     };
     Ok(py.detach(|| with_model(model, cmd))?)
 }

@@ -321,8 +321,10 @@ fn settled<T>(a: Attractor) -> Result<Settle<T>, OrbitError> {
 }
 
 /// A hook called at every stroboscopic phase `start.phase + 2πn`
-/// (`n = 0, 1, …`) with the segment in force there; `Some` stops the search.
-pub type StroboscopicHook<'a, T> = &'a mut dyn FnMut(&Segment, f64) -> Option<T>;
+/// (`n = 0, 1, …`) with the segment in force there and the events met since
+/// the previous one (grazes included; none at `n = 0`); `Some` stops the
+/// search.
+pub type StroboscopicHook<'a, T> = &'a mut dyn FnMut(&Segment, f64, &[Event]) -> Option<T>;
 
 /// [`find`], with a hook that can stop the search at any stroboscopic phase:
 /// the simulation then runs period by period, and a segment that outlasts a
@@ -335,7 +337,7 @@ pub fn find_or_stop<M: Model, T>(
     mut hook: Option<StroboscopicHook<'_, T>>,
 ) -> Result<Settle<T>, OrbitError> {
     let mut strobe = start.phase;
-    if let Some(t) = hook.as_mut().and_then(|stop| stop(&start, strobe)) {
+    if let Some(t) = hook.as_mut().and_then(|stop| stop(&start, strobe, &[])) {
         return Ok(Settle::Stopped(t));
     }
     strobe += TAU;
@@ -345,6 +347,8 @@ pub fn find_or_stop<M: Model, T>(
     // Enough events for cycles of up to 2 cap mappings, and of longer ones
     // (up to 16 cap mappings) to be recognised as too long.
     let keep = 32 * cap + 4;
+    // The events of the current period, for the hook.
+    let mut met: Vec<Event> = Vec::new();
     let mut tried_loose: Vec<(usize, u32)> = Vec::new();
     let mut tried_long: Vec<(usize, u32)> = Vec::new();
     let mut chunk = 4.0 * TAU;
@@ -355,16 +359,14 @@ pub fn find_or_stop<M: Model, T>(
         // Short chunks first (most motions settle fast), longer ones later.
         chunk = (chunk * 1.5).min(20.0 * TAU);
         let mut count = 0usize;
-        let mut record = |e: &Event| {
-            if e.kind != EventKind::Graze {
-                events.push(*e);
-                count += 1;
-            }
-        };
         if let Some(stop) = hook.as_mut() {
             while strobe <= phase {
                 let before = seg;
-                seg = sim.run(seg, strobe, &mut record)?;
+                met.clear();
+                seg = sim.run(seg, strobe, |e| {
+                    met.push(*e);
+                    record(&mut events, &mut count, e);
+                })?;
                 if seg == before {
                     let (x, v) = sim.state_at(&seg, strobe);
                     seg = Segment {
@@ -375,7 +377,7 @@ pub fn find_or_stop<M: Model, T>(
                         ..seg
                     };
                 }
-                if let Some(t) = stop(&seg, strobe) {
+                if let Some(t) = stop(&seg, strobe, &met) {
                     return Ok(Settle::Stopped(t));
                 }
                 // The certificate is a proof at any state: checked every
@@ -390,7 +392,7 @@ pub fn find_or_stop<M: Model, T>(
                 strobe += TAU;
             }
         }
-        seg = sim.run(seg, phase, &mut record)?;
+        seg = sim.run(seg, phase, |e| record(&mut events, &mut count, e))?;
         if events.len() > keep {
             events.drain(..events.len() - keep);
         }
@@ -480,6 +482,14 @@ pub fn find_or_stop<M: Model, T>(
         periods: opts.max_periods,
         undamped,
     })
+}
+
+/// Keep `e` for cycle detection (a graze is no switching point), counting it.
+fn record(events: &mut Vec<Event>, count: &mut usize, e: &Event) {
+    if e.kind != EventKind::Graze {
+        events.push(*e);
+        *count += 1;
+    }
 }
 
 /// Relative tolerance on a touched admissibility condition: the edge member of

@@ -36,8 +36,13 @@ fn fixed_colour(name: &str) -> Option<RGBColor> {
 
 /// Draw the basins in `file` (complete or partial) into `out` (`.svg` or `.png`).
 pub fn plot_basins(file: &Path, out: &Path) -> Result<(), BasinsError> {
-    let basins = BasinFile::read(file)?;
-    save(&BasinsFigure::new(&basins), out).map_err(BasinsError::Plot)
+    plot_basin_file(&BasinFile::read(file)?, out)
+}
+
+/// Draw the starts of `basins` (a file read, or a run kept in memory,
+/// [`Basins::to_file`](crate::study::basins::Basins::to_file)) into `out`.
+pub fn plot_basin_file(basins: &BasinFile, out: &Path) -> Result<(), BasinsError> {
+    save(&BasinsFigure::new(basins), out).map_err(BasinsError::Plot)
 }
 
 /// The figure of a basin file.

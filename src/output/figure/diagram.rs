@@ -44,11 +44,7 @@ fn branch_colour(k: usize) -> RGBColor {
 }
 
 fn branch_name(b: &BranchSection) -> String {
-    if b.n > 1 {
-        format!("{}^{}", b.structure, b.n)
-    } else {
-        b.structure.clone()
-    }
+    stickslip_codegen::structure::with_periods(&b.structure, b.n)
 }
 
 /// The distinct branch names, in order of first appearance.

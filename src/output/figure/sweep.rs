@@ -34,6 +34,7 @@ use super::{
     TICK_SIZE, TITLE_SIZE,
 };
 use crate::study::sweep::{BifurcationSummary, MotionSummary, Sweep, Transition, TransitionKind};
+use stickslip_codegen::structure::with_periods;
 
 /// Panel titles, in drawing order.
 pub const SWEEP_TITLES: [&str; 4] = [
@@ -85,15 +86,6 @@ fn kind_meaning(kind: TransitionKind) -> &'static str {
         TransitionKind::PeriodDoubling => "period doubling: eigenvalue −1, twice the period born",
         TransitionKind::NeimarkSacker => "Neimark–Sacker: a complex pair on |λ| = 1",
         _ => kind_name(kind),
-    }
-}
-
-/// `P_{...}` with `^N` when `N > 1`.
-fn with_periods(structure: &str, n: u32) -> String {
-    if n > 1 {
-        format!("{structure}^{n}")
-    } else {
-        structure.to_string()
     }
 }
 

@@ -17,8 +17,10 @@ use crate::model::Model;
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 use crate::orbit::known::{settle, KnownMotions, Settled};
 use crate::orbit::lyapunov::{spectrum, LyapunovOptions, Verdict};
-use crate::orbit::motion::OrbitError;
+use crate::orbit::motion::{Motion, OrbitError};
 use crate::study::map::{motion_label, NO_MOTION, STICK};
+use crate::study::search::same_motion;
+use stickslip_codegen::structure::with_periods;
 
 use super::file::{BasinHeader, StartResult};
 
@@ -38,6 +40,8 @@ pub struct Known {
     pub motions: KnownMotions,
     /// Each one's label (its id is its position here).
     pub labels: Vec<String>,
+    /// The motions themselves, in the same order.
+    pub found: Vec<Motion>,
 }
 
 /// The attractor options of a run of `periods` forcing periods at most.
@@ -64,8 +68,15 @@ pub fn seed_indices(header: &BasinHeader) -> Vec<usize> {
         .collect()
 }
 
+/// Switching points of two motions closer than this (relative to the
+/// motion's scale, phases in radians) are one motion.
+const SAME_MOTION: f64 = 1e-6;
+
 /// Identify the stable periodic motions reached from the seed starts
-/// (searched in parallel, kept in seed order, one per label).
+/// (searched in parallel, kept in seed order, each distinct motion once).
+/// Distinct motions of one structure, such as a mirror-image pair of a
+/// symmetric oscillator, are told apart in their labels by their first
+/// switching point ([`distinct_label`]).
 pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
     let opts = attractor_options(header.periods);
     let found: Vec<Option<attractor::Attractor>> = seed_indices(header)
@@ -76,22 +87,59 @@ pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
             attractor::find(sim, seg, opts).ok()
         })
         .collect();
-    let mut known = Known {
-        motions: KnownMotions::new(sim, header.phase),
-        labels: Vec::new(),
-    };
+    let mut motions: Vec<Motion> = Vec::new();
     for a in found.into_iter().flatten() {
         let Attractor::Periodic(m) = a else {
             continue;
         };
         let stable = m.stability.is_some_and(|s| s.is_stable()) && m.is_admissible();
-        let label = motion_label::<M>(&m);
-        if stable && !known.labels.contains(&label) {
-            known.motions.insert(sim, known.labels.len(), &m);
-            known.labels.push(label);
+        if stable && !motions.iter().any(|k| same_motion(k, &m, SAME_MOTION)) {
+            motions.push(m);
         }
     }
+    let mut known = Known {
+        motions: KnownMotions::new(sim, header.phase),
+        labels: Vec::new(),
+        found: Vec::new(),
+    };
+    for m in &motions {
+        let twins: Vec<&Motion> = motions
+            .iter()
+            .filter(|o| o.structure == m.structure)
+            .collect();
+        let label = if twins.len() > 1 {
+            distinct_label::<M>(m, &twins)
+        } else {
+            motion_label::<M>(m)
+        };
+        known.motions.insert(sim, known.labels.len(), m);
+        known.labels.push(label);
+    }
+    known.found = motions;
     known
+}
+
+/// The label of `motion` among `twins`, motions of its structure: the
+/// structure followed by its first switching point's `x`, with as many
+/// digits (at least 4) as tell the twins apart, e.g.
+/// `P_{0_11 1_11 0_11 2_11} (x1 = 1.4508)`.
+pub fn distinct_label<M: Model>(motion: &Motion, twins: &[&Motion]) -> String {
+    let x = |m: &Motion| m.points.first().map_or(f64::NAN, |p| p.x);
+    let digits = (4..=12)
+        .find(|&d| {
+            let mine = format!("{:.*}", d, x(motion));
+            twins
+                .iter()
+                .filter(|t| !same_motion(t, motion, SAME_MOTION))
+                .all(|t| format!("{:.*}", d, x(t)) != mine)
+        })
+        .unwrap_or(12);
+    format!(
+        "{} (x1 = {:.*})",
+        motion_label::<M>(motion),
+        digits,
+        x(motion)
+    )
 }
 
 /// The label of an attractor found by a full search.
@@ -118,7 +166,7 @@ pub fn classify<M: Model>(
             let settling = settle(sim, &known.motions, seg, attractor_options(header.periods));
             match settling.outcome {
                 Ok(Settled::Known(id)) => (known.labels[id].clone(), None),
-                Ok(Settled::Attractor(a)) => (attractor_label::<M>(&a), None),
+                Ok(Settled::Attractor(a)) => (settled_label::<M>(known, &a), None),
                 Err(OrbitError::Unsettled { .. }) => irregular(sim, header, (x, v)),
                 Err(OrbitError::Inadmissible(_)) => ("inadmissible".to_string(), None),
                 Err(OrbitError::NotConverged(_)) => ("not_converged".to_string(), None),
@@ -134,6 +182,33 @@ pub fn classify<M: Model>(
         v,
         attractor,
         exponent,
+    }
+}
+
+/// The label of an attractor a start settled on without a certificate:
+/// a known motion's label if it is that motion, else its own, told apart
+/// from a known motion of its structure by its first switching point.
+fn settled_label<M: Model>(known: &Known, a: &Attractor) -> String {
+    let Attractor::Periodic(m) = a else {
+        return attractor_label::<M>(a);
+    };
+    if let Some(i) = known
+        .found
+        .iter()
+        .position(|k| same_motion(k, m, SAME_MOTION))
+    {
+        return known.labels[i].clone();
+    }
+    let twins: Vec<&Motion> = known
+        .found
+        .iter()
+        .filter(|k| k.structure == m.structure)
+        .chain(std::iter::once(m))
+        .collect();
+    if twins.len() > 1 {
+        distinct_label::<M>(m, &twins)
+    } else {
+        attractor_label::<M>(a)
     }
 }
 
@@ -159,8 +234,7 @@ pub fn irregular<M: Model>(
             let label = match &s.verdict {
                 Verdict::Chaotic => CHAOTIC.to_string(),
                 Verdict::QuasiPeriodic => QUASI_PERIODIC.to_string(),
-                Verdict::Periodic { structure, n } if *n > 1 => format!("{structure}^{n}"),
-                Verdict::Periodic { structure, .. } => structure.clone(),
+                Verdict::Periodic { structure, n } => with_periods(structure, *n),
                 Verdict::NoMotion => NO_MOTION.to_string(),
                 Verdict::Stick => STICK.to_string(),
                 Verdict::LongCycle { longer_than } => {

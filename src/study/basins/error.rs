@@ -35,6 +35,9 @@ pub enum BasinsError {
     /// The output exists and `resume` was not asked for.
     #[error("`{0}` already exists: use --resume to continue that run, or remove the file")]
     OutputExists(PathBuf),
+    /// `resume` without a file to resume from.
+    #[error("--resume needs the run's file: give it with --out FILE")]
+    ResumeWithoutFile,
     /// Reading or writing a file failed.
     #[error("`{path}`: {source}")]
     Io {

@@ -44,7 +44,7 @@ pub mod sample;
 use std::collections::BTreeMap;
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -151,6 +151,92 @@ pub struct Basins {
     pub complete: bool,
     /// Wall time of the computation.
     pub elapsed: Duration,
+    /// Every start computed so far, by index.
+    pub starts: Vec<StartResult>,
+    /// The basin file, if the run keeps one.
+    pub file: Option<PathBuf>,
+}
+
+impl Basins {
+    /// The starts as a basin file holds them (for a figure of a run kept in
+    /// memory).
+    pub fn to_file(&self) -> BasinFile {
+        BasinFile {
+            header: self.header.clone(),
+            starts: self.starts.clone(),
+            valid_len: 0,
+        }
+    }
+}
+
+/// Open `out` for a run of `header`: a new file with its header, or, with
+/// `resume`, the file of the same run with the starts it holds read into
+/// `done` (a partial last line cut off). An existing file is never
+/// overwritten.
+fn open_output(
+    out: &Path,
+    header: &BasinHeader,
+    resume: bool,
+    done: &mut BTreeMap<usize, StartResult>,
+) -> Result<File, BasinsError> {
+    let existing = match fs::read(out) {
+        Ok(bytes) => Some(bytes),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
+        Err(e) => return Err(io_err(out)(e)),
+    };
+    let file = match existing {
+        Some(_) if !resume => return Err(BasinsError::OutputExists(out.to_path_buf())),
+        Some(bytes) => match BasinFile::parse(out, &bytes)? {
+            Some(previous) => {
+                if let Some(what) = header.difference(&previous.header) {
+                    return Err(BasinsError::Mismatch {
+                        path: out.to_path_buf(),
+                        what,
+                    });
+                }
+                for s in previous.starts {
+                    match done.get(&s.index) {
+                        Some(q) if q.to_line() != s.to_line() => {
+                            return Err(BasinsError::Conflict {
+                                path: out.to_path_buf(),
+                                index: s.index,
+                            })
+                        }
+                        _ => {
+                            done.insert(s.index, s);
+                        }
+                    }
+                }
+                let f = OpenOptions::new()
+                    .write(true)
+                    .open(out)
+                    .map_err(io_err(out))?;
+                f.set_len(previous.valid_len).map_err(io_err(out))?;
+                drop(f);
+                OpenOptions::new()
+                    .append(true)
+                    .open(out)
+                    .map_err(io_err(out))?
+            }
+            None => {
+                let mut f = File::create(out).map_err(io_err(out))?;
+                f.write_all(header.to_lines().as_bytes())
+                    .map_err(io_err(out))?;
+                f
+            }
+        },
+        None => {
+            let mut f = OpenOptions::new()
+                .append(true)
+                .create_new(true)
+                .open(out)
+                .map_err(io_err(out))?;
+            f.write_all(header.to_lines().as_bytes())
+                .map_err(io_err(out))?;
+            f
+        }
+    };
+    Ok(file)
 }
 
 /// One attractor's starts while summarizing: grid points, samples, the sum
@@ -246,18 +332,20 @@ fn check_axis(
 
 /// The basins of `M` at `params` over the grid `x × v` of starts at phase
 /// `settings.phase`, and `settings.samples` random starts, on all cores,
-/// into `out` (one line per start as soon as it is known).
+/// into the file `out` if one is given (one line per start as soon as it is
+/// known), else in memory only.
 ///
-/// Without `resume`, an existing `out` is an error. With it, the starts
-/// already in `out` are kept (a partial last line is dropped) after the
-/// header is checked to describe the same run, and only the rest are
-/// computed. When every start is in the file, it is rewritten sorted.
+/// Without `resume`, an existing `out` is an error: a file is never
+/// overwritten. With it, the starts already in `out` are kept (a partial
+/// last line is dropped) after the header is checked to describe the same
+/// run, and only the rest are computed. When every start is in the file, it
+/// is rewritten sorted. `resume` without a file is an error.
 pub fn run_basins<M: Model>(
     params: &M::Params,
     x: &GridAxis,
     v: &GridAxis,
     settings: &BasinSettings,
-    out: &Path,
+    out: Option<&Path>,
     opts: &BasinOptions,
 ) -> Result<Basins, BasinsError> {
     run_basins_counting::<M>(params, x, v, settings, out, opts, None)
@@ -273,7 +361,7 @@ pub fn run_basins_counting<M: Model>(
     x: &GridAxis,
     v: &GridAxis,
     settings: &BasinSettings,
-    out: &Path,
+    out: Option<&Path>,
     opts: &BasinOptions,
     counter: Option<&AtomicU64>,
 ) -> Result<Basins, BasinsError> {
@@ -300,62 +388,10 @@ pub fn run_basins_counting<M: Model>(
     let total = header.len();
 
     let mut done: BTreeMap<usize, StartResult> = BTreeMap::new();
-    let existing = match fs::read(out) {
-        Ok(bytes) => Some(bytes),
-        Err(e) if e.kind() == io::ErrorKind::NotFound => None,
-        Err(e) => return Err(io_err(out)(e)),
-    };
-    let file = match existing {
-        Some(_) if !opts.resume => return Err(BasinsError::OutputExists(out.to_path_buf())),
-        Some(bytes) => match BasinFile::parse(out, &bytes)? {
-            Some(previous) => {
-                if let Some(what) = header.difference(&previous.header) {
-                    return Err(BasinsError::Mismatch {
-                        path: out.to_path_buf(),
-                        what,
-                    });
-                }
-                for s in previous.starts {
-                    match done.get(&s.index) {
-                        Some(q) if q.to_line() != s.to_line() => {
-                            return Err(BasinsError::Conflict {
-                                path: out.to_path_buf(),
-                                index: s.index,
-                            })
-                        }
-                        _ => {
-                            done.insert(s.index, s);
-                        }
-                    }
-                }
-                let f = OpenOptions::new()
-                    .write(true)
-                    .open(out)
-                    .map_err(io_err(out))?;
-                f.set_len(previous.valid_len).map_err(io_err(out))?;
-                drop(f);
-                OpenOptions::new()
-                    .append(true)
-                    .open(out)
-                    .map_err(io_err(out))?
-            }
-            None => {
-                let mut f = File::create(out).map_err(io_err(out))?;
-                f.write_all(header.to_lines().as_bytes())
-                    .map_err(io_err(out))?;
-                f
-            }
-        },
-        None => {
-            let mut f = OpenOptions::new()
-                .append(true)
-                .create_new(true)
-                .open(out)
-                .map_err(io_err(out))?;
-            f.write_all(header.to_lines().as_bytes())
-                .map_err(io_err(out))?;
-            f
-        }
+    let file = match out {
+        Some(out) => Some(open_output(out, &header, opts.resume, &mut done)?),
+        None if opts.resume => return Err(BasinsError::ResumeWithoutFile),
+        None => None,
     };
     let already_done = done.len();
     let todo: Vec<usize> = (0..total).filter(|i| !done.contains_key(i)).collect();
@@ -370,7 +406,7 @@ pub fn run_basins_counting<M: Model>(
         counter,
         already_done as u64,
     );
-    let file = Mutex::new(file);
+    let file = file.map(Mutex::new);
     let new_starts: Mutex<Vec<StartResult>> = Mutex::new(Vec::with_capacity(todo.len()));
     let write_error: Mutex<Option<io::Error>> = Mutex::new(None);
     let failed = AtomicBool::new(false);
@@ -385,8 +421,8 @@ pub fn run_basins_counting<M: Model>(
             if claimed.fetch_add(1, Ordering::Relaxed) >= limit {
                 return;
             }
-            let line = record.to_line();
-            {
+            if let Some(file) = &file {
+                let line = record.to_line();
                 let mut f = file.lock().unwrap_or_else(|e| e.into_inner());
                 if let Err(e) = f.write_all(line.as_bytes()).and_then(|()| f.flush()) {
                     failed.store(true, Ordering::Relaxed);
@@ -406,7 +442,10 @@ pub fn run_basins_counting<M: Model>(
     }
     bar.finish();
     drop(file);
-    if let Some(e) = write_error.into_inner().unwrap_or_else(|e| e.into_inner()) {
+    if let (Some(e), Some(out)) = (
+        write_error.into_inner().unwrap_or_else(|e| e.into_inner()),
+        out,
+    ) {
         return Err(io_err(out)(e));
     }
     let new_starts = new_starts.into_inner().unwrap_or_else(|e| e.into_inner());
@@ -416,11 +455,13 @@ pub fn run_basins_counting<M: Model>(
     }
     let complete = done.len() == total;
     let starts: Vec<StartResult> = done.into_values().collect();
-    if complete {
+    if let (true, Some(out)) = (complete, out) {
         write_canonical(out, &header, &starts)?;
     }
     Ok(Basins {
         attractors: summarize(&header, &starts),
+        starts,
+        file: out.map(Path::to_path_buf),
         header,
         already_done,
         computed,

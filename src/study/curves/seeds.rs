@@ -45,8 +45,7 @@ pub(super) struct LineSweep {
 pub(super) fn structure_name<M: Model>(s: Option<&Structure>) -> String {
     match s {
         None => "NM".into(),
-        Some(s) if s.periods() > 1 => format!("{}^{}", s.notation(M::INFO), s.periods()),
-        Some(s) => s.notation(M::INFO),
+        Some(s) => s.label(M::INFO),
     }
 }
 

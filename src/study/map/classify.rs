@@ -11,6 +11,7 @@ use crate::orbit::lyapunov::{spectrum, LyapunovOptions, Verdict};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::Termination;
 use crate::orbit::structure::Structure;
+use stickslip_codegen::structure::with_periods;
 
 use super::file::PointResult;
 use super::grid::GridAxis;
@@ -23,13 +24,7 @@ pub fn motion_label<M: Model>(motion: &Motion) -> String {
 
 /// The name on the map of a motion of `structure` (see [`motion_label`]).
 pub(super) fn structure_label<M: Model>(structure: &Structure) -> String {
-    let n = structure.periods();
-    let s = structure.notation(M::INFO);
-    if n > 1 {
-        format!("{s}^{n}")
-    } else {
-        s
-    }
+    structure.label(M::INFO)
 }
 
 /// Whether two motions are the same orbit: same structure and period, and
@@ -92,12 +87,11 @@ pub(super) fn unsettled<M: Model>(
             format!("cycle longer than {longer_than} periods (lambda1 = {l:.3e} +- {err:.1e})")
         }
         Verdict::Periodic { structure, n } => {
-            let n = if n > 1 {
-                format!("^{n}")
-            } else {
-                String::new()
-            };
-            format!("{} (settles later on {structure}{n})", failure::<M>(e))
+            format!(
+                "{} (settles later on {})",
+                failure::<M>(e),
+                with_periods(&structure, n)
+            )
         }
         Verdict::NoMotion | Verdict::Stick => failure::<M>(e),
     }

@@ -43,9 +43,9 @@ use std::collections::BTreeSet;
 
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
-use crate::orbit::admissible::{conditions, worst_margin, ViolationKind};
+use crate::orbit::admissible::worst_margin;
 use crate::orbit::attractor::{self, no_motion_certificate, Attractor, AttractorOptions};
-use crate::orbit::known::{self, KnownMotions, Settled};
+use crate::orbit::known::{self, guard_margin, KnownMotions, Settled};
 use crate::orbit::motion::{segment_at, Motion, OrbitError};
 use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
 use crate::orbit::stability::Stability;
@@ -74,30 +74,6 @@ pub const CONTINUATION_NEWTON: NewtonOptions = NewtonOptions {
 /// Such a start is simulated until it settles, and a point with such a
 /// motion always simulates its starts.
 pub const MARGIN_GUARD: f64 = 2e-3;
-
-/// A start stops at a known motion only within its smallest admissibility
-/// margin, converted to a distance in state ([`state_to_margin`]), divided
-/// by this: the margin is what the orbit may deviate by before it crosses a
-/// transition, and a deviation can grow within a period before the motion's
-/// contraction takes it back. (On the 100 × 100 check grid a start that
-/// passed within a tenth of the motion's length scale of
-/// `P_{3_31 0_11 1_11 3_13 4_33}`, stick-onset margin 0.019, went on to a
-/// coexisting period-2 motion at W = 4.14, Q0 = 58.2.)
-pub const REACH_FACTOR: f64 = 10.0;
-
-/// How much a margin (a velocity, or a force per unit mass) can change per
-/// unit of deviation of the state in the norm of [`KnownMotions`]
-/// (`max(|Δx|, |Δv| / W)`): at most `W` for a velocity and
-/// `|c_j| + |2 d_j| W` for the force of domain `j`.
-fn state_to_margin<M: Model>(sim: &Simulator<M>) -> f64 {
-    let w = sim.oscillator().frequency.abs();
-    (0..M::INFO.domains.len())
-        .map(|j| {
-            let co = sim.coefficients(j);
-            co.c.abs() + co.two_d.abs() * w
-        })
-        .fold(w.max(f64::MIN_POSITIVE), f64::max)
-}
 
 /// The starts are simulated at least at every `SEED_SPACING`-th point of a
 /// tile in both directions, so that a region this wide is entered even where
@@ -210,10 +186,6 @@ struct Found {
     label: String,
     motion: Motion,
     clear: bool,
-    /// How far from the motion (a length in the norm of [`KnownMotions`])
-    /// a state is certain to keep its structure for a while:
-    /// its smallest margin over [`REACH_FACTOR`] · [`state_to_margin`].
-    reach: f64,
 }
 
 impl<M: Model> Cell<M> {
@@ -231,12 +203,10 @@ impl<M: Model> Cell<M> {
             .fold(1.0_f64, f64::max);
         let wm = guard_margin(sim, &motion);
         let clear = wm.is_some_and(|m| m >= MARGIN_GUARD * scale);
-        let reach = wm.map_or(0.0, |m| m / (REACH_FACTOR * state_to_margin(sim)));
         self.motions.push(Found {
             label,
             motion,
             clear,
-            reach,
         });
     }
 
@@ -260,26 +230,6 @@ impl<M: Model> Cell<M> {
             motions,
         }
     }
-}
-
-/// The smallest admissibility margin of `motion` (SPEC §6) that measures
-/// its distance to a transition: every condition but the stick end's, whose
-/// margin is the phase tolerance of the event search (about `1e-7 W t`) for
-/// every stick that ends where it should, however far the motion is from a
-/// transition (the stick that ends early is a violation, never a small
-/// margin). NaN counts as the smallest; `None` for no conditions.
-fn guard_margin<M: Model>(sim: &Simulator<M>, motion: &Motion) -> Option<f64> {
-    conditions(sim, &motion.structure, &motion.points)
-        .iter()
-        .filter(|c| c.kind != ViolationKind::StickEnd)
-        .map(|c| {
-            if c.margin.is_nan() {
-                f64::NEG_INFINITY
-            } else {
-                c.margin
-            }
-        })
-        .reduce(f64::min)
 }
 
 /// A converged motion from the continuer's points (admissible and stable).
@@ -357,12 +307,12 @@ fn take<M: Model>(cell: &mut Cell<M>, found: Result<Settled, OrbitError>) -> Res
     }
 }
 
-/// The known motions of `cell`, seen at `phase0`, each with a neighbourhood
-/// no wider than its reach ([`Found::reach`]).
+/// The known motions of `cell`, seen at `phase0` (each certifies starts
+/// only within its reach, [`known::reach`]).
 fn known_at<M: Model>(sim: &Simulator<M>, cell: &Cell<M>, phase0: f64) -> KnownMotions {
     let mut known = KnownMotions::new(sim, phase0);
     for (id, f) in cell.motions.iter().enumerate() {
-        known.insert_within(sim, id, &f.motion, f.reach);
+        known.insert(sim, id, &f.motion);
     }
     known
 }

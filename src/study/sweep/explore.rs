@@ -20,7 +20,7 @@ use crate::study::search::{coexisting, same_motion, SearchOptions};
 
 use super::grid::{at_value, SAME};
 use super::settle;
-use super::{stick_summary, with, MotionSummary, SweepOptions, Transition};
+use super::{stick_summary, with, Cut, MotionSummary, SweepOptions, Transition, TransitionKind};
 
 /// The motion at a point of a branch (solved and checked by the continuation).
 fn motion_of(structure: &Structure, at: &BranchPoint) -> Motion {
@@ -71,6 +71,8 @@ pub(super) struct Explorer<'a, M: Model> {
     pub transitions: Vec<Transition>,
     /// Permanent sticks met by the simulations, at their parameter values.
     pub sticks: Vec<(f64, MotionSummary)>,
+    /// Branches born by period doubling beyond the longest period followed.
+    pub cuts: Vec<Cut>,
 }
 
 impl<'a, M: Model> Explorer<'a, M> {
@@ -94,6 +96,7 @@ impl<'a, M: Model> Explorer<'a, M> {
             bifurcations: Vec::new(),
             transitions: Vec::new(),
             sticks: Vec::new(),
+            cuts: Vec::new(),
         }
     }
 
@@ -363,6 +366,18 @@ impl<'a, M: Model> Explorer<'a, M> {
                 boundary: None,
             });
             for start in starts {
+                let periods = start.structure.periods();
+                if kind == TransitionKind::PeriodDoubling
+                    && self.opts.max_period.is_some_and(|max| periods > max)
+                {
+                    self.cuts.push(Cut {
+                        value: at.value,
+                        structure: start.structure.notation(M::INFO),
+                        n: periods,
+                        max_period: self.opts.max_period.unwrap_or(periods),
+                    });
+                    continue;
+                }
                 self.queue.push_back(Pending {
                     start,
                     parent: Some(located),

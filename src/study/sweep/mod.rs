@@ -28,11 +28,13 @@ use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::stability::Stability;
 
+mod cascade;
 mod explore;
 mod grid;
 mod rest;
 mod settle;
 
+pub use cascade::{Cascade, Doubling, FEIGENBAUM_DELTA};
 use explore::Explorer;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -101,6 +103,27 @@ pub struct Sweep {
     pub branches: Vec<BranchSummary>,
     /// The eigenvalue bifurcations on the branches, ascending.
     pub bifurcations: Vec<BifurcationSummary>,
+    /// Branches born by period doubling that were not followed, being
+    /// longer than [`SweepOptions::max_period`].
+    pub cuts: Vec<Cut>,
+    /// The period-doubling cascades and their accumulation points.
+    pub cascades: Vec<Cascade>,
+}
+
+/// A branch born by period doubling and not followed: its period exceeds
+/// [`SweepOptions::max_period`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Cut {
+    /// Where it is born (keyed by the parameter's name in JSON).
+    #[serde(skip)]
+    pub value: f64,
+    /// Its structure.
+    pub structure: String,
+    /// Its forcing periods per cycle.
+    #[serde(rename = "N")]
+    pub n: u32,
+    /// The largest period followed.
+    pub max_period: u32,
 }
 
 /// One computed point of a branch.
@@ -207,9 +230,6 @@ pub enum SweepError {
     /// Bad parameters.
     #[error(transparent)]
     Params(#[from] ParamError),
-    /// Not a parameter of the model.
-    #[error("`{0}` is not a free parameter of the model")]
-    UnknownParam(String),
     /// A bad range.
     #[error("bad sweep range: {0}")]
     Range(String),
@@ -243,7 +263,15 @@ pub struct SweepOptions {
     /// Newton step on twice that many unknowns; the motion is still named
     /// where a simulation finds it (a transition's far side).
     pub max_mappings: Option<usize>,
+    /// Branches born by period doubling with more forcing periods than
+    /// this are not followed (`None`: every one), and are reported as cut
+    /// ([`Sweep::cuts`]): a cascade to chaos doubles without end, and
+    /// each doubling costs twice the last.
+    pub max_period: Option<u32>,
 }
+
+/// The longest period a sweep follows by default ([`SweepOptions::max_period`]).
+pub const MAX_PERIOD: u32 = 16;
 
 impl Default for SweepOptions {
     fn default() -> Self {
@@ -258,6 +286,7 @@ impl Default for SweepOptions {
             every: 50,
             max_branches: 64,
             max_mappings: None,
+            max_period: Some(MAX_PERIOD),
         }
     }
 }
@@ -451,7 +480,7 @@ pub(crate) fn sweep_branches<M: Model>(
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
     <M::Params as ParamSet>::index_of(name)
-        .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
+        .ok_or_else(|| ParamError::not_free(M::IDENTITY, name))?;
     if count < 2 || !from.is_finite() || !to.is_finite() || from >= to {
         return Err(SweepError::Range(format!(
             "{name}={from}:{to}:{count}: need from < to and at least 2 points"
@@ -471,7 +500,7 @@ fn sweep_grid<M: Model>(
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
     let index = <M::Params as ParamSet>::index_of(name)
-        .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
+        .ok_or_else(|| ParamError::not_free(M::IDENTITY, name))?;
     if opts.max_mappings == Some(0) {
         return Err(SweepError::Options(
             "the longest branch followed (--max-mappings, max_mappings) must have at least 1 mapping, not 0".into(),
@@ -536,7 +565,19 @@ fn sweep_grid<M: Model>(
             }
         })
         .collect();
+    let located: Vec<cascade::Located> = bifurcations
+        .iter()
+        .map(|b| cascade::Located {
+            value: b.value,
+            kind: b.kind,
+            n: b.n,
+            structure: &b.structure,
+        })
+        .collect();
+    let cascades = cascade::cascades(&located);
     bifurcations.sort_by(|a, b| a.value.total_cmp(&b.value));
+    let mut cuts = std::mem::take(&mut explorer.cuts);
+    cuts.sort_by(|a, b| a.value.total_cmp(&b.value));
     let mut transitions = explorer.transitions;
     transitions.sort_by(|a, b| a.value.total_cmp(&b.value));
     transitions
@@ -548,6 +589,8 @@ fn sweep_grid<M: Model>(
             transitions,
             branches,
             bifurcations,
+            cuts,
+            cascades,
         },
         explorer.branches,
     ))

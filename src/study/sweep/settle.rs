@@ -30,12 +30,7 @@ pub(super) fn motion_name<M: Model>(m: &Motion) -> String {
 
 /// `P_{...}`, with `^N` for a structure of N > 1 forcing periods.
 pub(super) fn structure_name<M: Model>(s: &Structure) -> String {
-    let n = s.periods();
-    if n > 1 {
-        format!("{}^{n}", s.notation(M::INFO))
-    } else {
-        s.notation(M::INFO)
-    }
+    s.label(M::INFO)
 }
 
 /// Simulate from rest.
