@@ -58,6 +58,8 @@ fn sample(value: f64, points: Vec<(f64, f64)>, eigenvalues: Vec<[f64; 2]>) -> Br
         start_wt: points[0].0,
         start_x: points[0].1,
         stable: modulus(&eigenvalues) < 1.0,
+        max_abs_x: points.iter().map(|p| p.1.abs()).fold(0.0, f64::max),
+        max_abs_v: 1.0 + value,
         eigenvalues,
         points: points
             .into_iter()
@@ -84,6 +86,8 @@ fn motion(structure: &str, w: f64) -> MotionSummary {
         start_x: x,
         eigenvalues: vec![[l, 0.0], [0.1, 0.0]],
         stable: l.abs() < 1.0,
+        max_abs_x: x.abs(),
+        max_abs_v: 1.0 + w,
         max_v: None,
         points: vec![SwitchingPoint { phase, x }],
     }
@@ -187,6 +191,8 @@ fn bifurcations() -> Vec<BifurcationSummary> {
             born,
             start_wt: at.0,
             start_x: at.1,
+            max_abs_x: at.1.abs(),
+            max_abs_v: 1.0 + value,
         }
     };
     vec![
@@ -234,6 +240,8 @@ fn synthetic(param: &str) -> Sweep {
                     start_x: f64::NAN,
                     eigenvalues: vec![],
                     stable: true,
+                    max_abs_x: 0.2,
+                    max_abs_v: 0.3,
                     max_v: Some(0.3),
                     points: vec![],
                 });
@@ -304,7 +312,18 @@ fn json_lists_branches_and_bifurcations_keyed_by_the_parameter() {
     for (k, p) in pts.iter().enumerate() {
         let mut keys: Vec<&str> = p.as_object().unwrap().keys().map(String::as_str).collect();
         keys.sort_unstable();
-        assert_eq!(keys, ["W", "eigenvalues", "stable", "start_Wt", "start_x"]);
+        assert_eq!(
+            keys,
+            [
+                "W",
+                "eigenvalues",
+                "max_abs_v",
+                "max_abs_x",
+                "stable",
+                "start_Wt",
+                "start_x"
+            ]
+        );
         let (w, phase, x, l) = fold_at((k as f64 + 0.5) / 20.0);
         assert!(close(&p["W"], w), "{p}");
         assert!(
@@ -350,6 +369,8 @@ fn json_lists_branches_and_bifurcations_keyed_by_the_parameter() {
                 "branch",
                 "eigenvalue",
                 "kind",
+                "max_abs_v",
+                "max_abs_x",
                 "start_Wt",
                 "start_x",
                 "structure"
