@@ -25,15 +25,15 @@
 //! use stickslip::models::paper::{Paper, Params};
 //! use stickslip::study::sweep::{sweep, SweepOptions};
 //!
-//! // The paper's model at Q0 = 70, W swept over [3.6, 3.8]: the stick-slip
-//! // motion P_{3_31 0_11 3_13 4_33} ends at a passable onset near W = 3.755.
+//! // The paper's model at Q0 = 70, W swept over [3.6, 3.8]: where the
+//! // stick-slip motion P_{3_31 0_11 3_13 4_33} gains a slip above the belt.
 //! let base = Params { Q0: 70.0, ..Params::default() };
 //! let s = sweep::<Paper>(base, "W", 3.6, 3.8, 9, SweepOptions::default())?;
 //! let end = s
 //!     .transitions
 //!     .iter()
-//!     .find(|t| t.from == "P_{3_31 0_11 3_13 4_33}")
-//!     .expect("the stick motion ends in the window");
+//!     .find(|t| t.from == "P_{3_31 0_11 3_13 4_33}" && t.to == "P_{3_31 0_11 1_11 3_13 4_33}")
+//!     .expect("the transition lies in the window");
 //! assert!((end.value - 3.7550059120).abs() < 1e-8);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

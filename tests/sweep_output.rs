@@ -14,7 +14,9 @@ use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::output::figure::layout::Rect;
 use stickslip::output::figure::palette::category;
 use stickslip::output::figure::register;
-use stickslip::output::figure::sweep::{plot_sweep, SweepFigure, STABLE_WIDTH, UNSTABLE_WIDTH};
+use stickslip::output::figure::sweep::{
+    plot_sweep, SweepFigure, View, STABLE_WIDTH, UNSTABLE_WIDTH,
+};
 use stickslip::output::sweep_table;
 use stickslip::study::sweep::{
     BifurcationSummary, BranchEndSummary, BranchSample, BranchSummary, MotionSummary, Sweep,
@@ -563,7 +565,7 @@ fn figure_draws_stable_solid_unstable_dashed_and_one_mark_per_bifurcation() {
     let colour = |rank: usize| hex(category(rank));
     let (cb, ca, cbb, cc) = (colour(0), colour(1), colour(2), colour(3));
     let all = tmp("all.svg");
-    plot_sweep(&s, "synthetic", &all, true).unwrap();
+    plot_sweep(&s, "synthetic", &all, true, View::Diagram).unwrap();
     // The PNG backend draws it too.
     let png = tmp("all.png");
     plot_sweep(
@@ -571,6 +573,7 @@ fn figure_draws_stable_solid_unstable_dashed_and_one_mark_per_bifurcation() {
         "a synthetic sweep: fold, period doubling, Neimark–Sacker",
         &png,
         true,
+        View::Diagram,
     )
     .unwrap();
     assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
@@ -608,7 +611,7 @@ fn figure_draws_stable_solid_unstable_dashed_and_one_mark_per_bifurcation() {
 
     // Without the unstable parts: the same solid lines, no dash, the marks.
     let stable = tmp("stable.svg");
-    plot_sweep(&s, "synthetic", &stable, false).unwrap();
+    plot_sweep(&s, "synthetic", &stable, false, View::Diagram).unwrap();
     let svg2 = std::fs::read_to_string(&stable).unwrap();
     for c in [&ca, &cb, &cbb, &cc] {
         assert!(lines(&svg2, c, STABLE_WIDTH) >= 1, "no solid line in {c}");

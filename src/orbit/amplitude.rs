@@ -2,7 +2,7 @@
 //! cycle, from the closed form (the frequency-response view of a sweep).
 //!
 //! Along a flow segment the velocity's extrema are the zeros of the
-//! acceleration, found and proven by [`SegmentFlow::acceleration_zeros`]
+//! acceleration, found and proven by `SegmentFlow::acceleration_zeros`
 //! (the search admissibility uses); between two of them the velocity is
 //! monotone, so it vanishes there at most once, where a sign change says
 //! so, and that zero (an extremum of `x`) is refined by Newton safeguarded
