@@ -397,10 +397,9 @@ fn the_sweeps_amplitudes_are_den_hartogs() {
         let sq = f64::sqrt(o.c);
         let s = sweep::<Coulomb>(base, "W", lo * sq, hi * sq, 9, SweepOptions::default())
             .expect("the sweep runs");
-        let mut check = |w: f64, structure: &str, x: f64, v: f64, what: &str| {
+        let mut check = |w: f64, x: f64, v: f64, what: &str| {
             let n = den_hartog(Osc { w, ..o }).expect("non-stop");
             assert!(n.min_v > 1e-3, "W = {w}: {n:?}");
-            assert_eq!(structure, "P_{1_11 2_11}", "{what} at W = {w}");
             let (ex, ev) = ((x - n.x0).abs() / n.x0, (v - n.max_v).abs() / n.max_v);
             assert!(
                 ex < 1e-9 && ev < 1e-9,
@@ -411,14 +410,19 @@ fn the_sweeps_amplitudes_are_den_hartogs() {
             worst = worst.max(ex).max(ev);
             compared += 1;
         };
+        const NON_STOP: &str = "P_{1_11 2_11}";
         for p in &s.points {
-            assert_eq!(p.motions.len(), 1, "W = {}: {:?}", p.value, p.motions);
-            let m = &p.motions[0];
-            check(p.value, &m.structure, m.max_abs_x, m.max_abs_v, "grid");
+            let ours: Vec<_> = p
+                .motions
+                .iter()
+                .filter(|m| m.structure == NON_STOP)
+                .collect();
+            assert_eq!(ours.len(), 1, "W = {}: {:?}", p.value, p.motions);
+            check(p.value, ours[0].max_abs_x, ours[0].max_abs_v, "grid");
         }
-        for b in &s.branches {
+        for b in s.branches.iter().filter(|b| b.structure == NON_STOP) {
             for q in &b.points {
-                check(q.value, &b.structure, q.max_abs_x, q.max_abs_v, "branch");
+                check(q.value, q.max_abs_x, q.max_abs_v, "branch");
             }
         }
     }
