@@ -4,7 +4,7 @@
 # docs/guide/src/figures/.
 #
 #   bash scripts/figures.sh              # all of them (a few minutes, release build)
-#   QUICK=1 bash scripts/figures.sh      # the fast ones, into a temporary folder (CI)
+#   QUICK=1 bash scripts/figures.sh      # the fast ones, into a temporary folder removed at the end (CI)
 #   OUT=/tmp/figs bash scripts/figures.sh   # somewhere else
 #   STICKSLIP=/path/to/stickslip ...     # a given binary instead of building one
 #
@@ -15,8 +15,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 quick=${QUICK:-}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
 if [[ -n "$quick" ]]; then
-    out=${OUT:-$(mktemp -d)}
+    out=${OUT:-$tmp/figures}
 else
     out=${OUT:-docs/guide/src/figures}
 fi
@@ -35,9 +37,6 @@ figure() {
     [[ -s "$out/$name" ]] || { echo "error: $out/$name was not written" >&2; exit 1; }
     echo "  $name ($((SECONDS - start)) s)"
 }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-
 echo "figures into $out"
 # Periodic motions.
 figure orbit_w3.7.svg s orbit --model paper --structure "P_{3_31 0_11 3_13 4_33}" \
