@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The eight `curves` runs the README's "Regime maps" section quotes, each run
+# The eight `curves` runs the guide's "Regime maps" chapter quotes, each run
 # alone and timed (wall), with its counts: curves, codimension-two points,
 # ends that are neither on the box's edge nor at a codimension-two
 # point (a corrector failure, a crawl, the point limit), and located
@@ -9,7 +9,7 @@
 #   benches/curves-runs.sh s8box      # one of them, by name
 #   EXTRA="--probes 4" benches/curves-runs.sh fig11   # with more options
 #   EXTRA=--no-edges benches/curves-runs.sh          # without the box edges' sweeps
-#                                                    # (the default until stop 38)
+#                                                    # (on by default)
 #   BIN=/tmp/old/stickslip OUT=/tmp/old-runs benches/curves-runs.sh  # another build
 #
 # The JSON of each run is kept in target/curves-runs/NAME.json (or OUT).
@@ -51,5 +51,5 @@ run s8box --model stribeck8 --x W=2.3:2.6 --y Q0=1:3
 run s8full --model stribeck8 --x W=0.5:3 --y Q0=1:12
 run mm40 --model paper --x W=5:8 --y Q0=20:60 --max-mappings 40
 run pl4 --model stribeck::pl4 --x W=0.5:3 --y Q0=1:12
-# The box of tests/curve_stick_end.rs: sticks whose exits turn tangential (stop 39).
+# The box of tests/curve_stick_end.rs: sticks whose exits turn tangential.
 run stickend --model paper --x W=2.6:2.9 --y Q0=185:215 --seed Q0=200

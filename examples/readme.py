@@ -9,4 +9,4 @@ df = sweep.to_pandas()  # one row per motion and W
 fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
 a.plot(h.x, h.v); a.set(xlabel="x", ylabel="v", title=motion.structure)
 b.scatter(df.W, df.start_x, c=df.stable, s=4, cmap="coolwarm_r"); b.set(xlabel="W", ylabel="x at the first switching point")
-fig.savefig("docs/python_example.png", dpi=90)
+fig.savefig("docs/guide/src/figures/python_example.png", dpi=90)

@@ -11,7 +11,7 @@
 //! Checked: every curve of the box ends on its edge or at a
 //! codimension-two point (the fold and the period doubling now end where
 //! the event search's stick end flips, the motion's equations turning
-//! singular there: docs/regime-maps.md, "Other models", an open fault), and every
+//! singular there), and every
 //! codimension-two end holds its second condition to 1e-8. And
 //! independently: at every point of a
 //! period-doubling curve whose condition is above 1e-10 of its scale, the

@@ -42,6 +42,7 @@ use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::motion::{solve, Motion};
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
+use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -68,6 +69,9 @@ struct NonStop {
     kick: f64,
     /// Smallest `x' / (W X0)` inside the upward half period (sampled).
     min_v: f64,
+    /// Largest velocity (on the upward half; the downward half mirrors it):
+    /// the sampled maximum refined by golden-section search.
+    max_v: f64,
 }
 
 /// `Φ(τ)` of `h'' + 2 d h' + c h = 0` on `(h, h')`.
@@ -113,19 +117,41 @@ fn den_hartog(o: Osc) -> Option<NonStop> {
     let kick = o.a0 * phi.cos() + o.c * x0 - o.ak;
     // The velocity on the upward half: h' + xp'.
     let (h0, dh0) = (-x0 + e - p, -q);
+    let velocity = |t: f64| {
+        let g = transfer(o.d, o.c, t);
+        g[1][0] * h0 + g[1][1] * dh0 - r * o.w * (o.w * t + phi - theta).sin()
+    };
     let mut min_v = f64::INFINITY;
+    let (mut best, mut at) = (f64::NEG_INFINITY, 0);
     let n = 2000;
     for i in 1..n {
         let t = half * i as f64 / n as f64;
-        let g = transfer(o.d, o.c, t);
-        let v = g[1][0] * h0 + g[1][1] * dh0 - r * o.w * (o.w * t + phi - theta).sin();
+        let v = velocity(t);
         min_v = min_v.min(v / (o.w * x0.abs()));
+        if v > best {
+            (best, at) = (v, i);
+        }
+    }
+    // Golden section on the samples either side of the largest.
+    let (mut a, mut b) = (
+        half * (at - 1) as f64 / n as f64,
+        half * (at + 1) as f64 / n as f64,
+    );
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    while b - a > 1e-15 * half {
+        let (c, d) = (b - g * (b - a), a + g * (b - a));
+        if velocity(c) > velocity(d) {
+            b = d;
+        } else {
+            a = c;
+        }
     }
     Some(NonStop {
         x0,
         phi,
         kick,
         min_v,
+        max_v: velocity(0.5 * (a + b)),
     })
 }
 
@@ -349,6 +375,59 @@ fn orbit_and_simulate_reproduce_den_hartog_inside_the_non_stop_boundary() {
     }
     eprintln!("{compared} grid points compared; worst deviation {worst:.1e}");
     assert!(compared >= 100, "{compared} points compared");
+}
+
+/// The frequency response of a sweep along W (its amplitudes `max |x|`,
+/// `max |v|` at the grid values and along the branches) is Den Hartog's
+/// closed-form amplitude `X0` and the largest velocity of his motion.
+#[test]
+fn the_sweeps_amplitudes_are_den_hartogs() {
+    let (mut compared, mut worst) = (0, 0.0f64);
+    for (zeta, mus_ratio) in [(0.0, 1.0), (0.05, 1.5), (0.3, 1.0)] {
+        let (lo, hi) = (1.3, 2.5);
+        // Inside the non-stop boundary over the whole range.
+        let rb = [lo, 1.6, 2.0, hi]
+            .iter()
+            .map(|&beta| {
+                let (_, o) = params(beta, zeta, 0.0, 1.0);
+                boundary(o) / o.a0
+            })
+            .fold(f64::INFINITY, f64::min);
+        let (base, o) = params(lo, zeta, 0.4 * rb, mus_ratio);
+        let sq = f64::sqrt(o.c);
+        let s = sweep::<Coulomb>(base, "W", lo * sq, hi * sq, 9, SweepOptions::default())
+            .expect("the sweep runs");
+        let mut check = |w: f64, x: f64, v: f64, what: &str| {
+            let n = den_hartog(Osc { w, ..o }).expect("non-stop");
+            assert!(n.min_v > 1e-3, "W = {w}: {n:?}");
+            let (ex, ev) = ((x - n.x0).abs() / n.x0, (v - n.max_v).abs() / n.max_v);
+            assert!(
+                ex < 1e-9 && ev < 1e-9,
+                "{what}, ζ = {zeta}, W = {w}: max|x| {x} vs X0 {}, max|v| {v} vs {}",
+                n.x0,
+                n.max_v
+            );
+            worst = worst.max(ex).max(ev);
+            compared += 1;
+        };
+        const NON_STOP: &str = "P_{1_11 2_11}";
+        for p in &s.points {
+            let ours: Vec<_> = p
+                .motions
+                .iter()
+                .filter(|m| m.structure == NON_STOP)
+                .collect();
+            assert_eq!(ours.len(), 1, "W = {}: {:?}", p.value, p.motions);
+            check(p.value, ours[0].max_abs_x, ours[0].max_abs_v, "grid");
+        }
+        for b in s.branches.iter().filter(|b| b.structure == NON_STOP) {
+            for q in &b.points {
+                check(q.value, q.max_abs_x, q.max_abs_v, "branch");
+            }
+        }
+    }
+    eprintln!("{compared} amplitudes compared; worst relative deviation {worst:.1e}");
+    assert!(compared >= 27, "{compared}");
 }
 
 #[test]

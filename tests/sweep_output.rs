@@ -14,7 +14,9 @@ use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::output::figure::layout::Rect;
 use stickslip::output::figure::palette::category;
 use stickslip::output::figure::register;
-use stickslip::output::figure::sweep::{plot_sweep, SweepFigure, STABLE_WIDTH, UNSTABLE_WIDTH};
+use stickslip::output::figure::sweep::{
+    plot_sweep, SweepFigure, View, STABLE_WIDTH, UNSTABLE_WIDTH,
+};
 use stickslip::output::sweep_table;
 use stickslip::study::sweep::{
     BifurcationSummary, BranchEndSummary, BranchSample, BranchSummary, Cut, MotionSummary, Sweep,
@@ -58,6 +60,8 @@ fn sample(value: f64, points: Vec<(f64, f64)>, eigenvalues: Vec<[f64; 2]>) -> Br
         start_wt: points[0].0,
         start_x: points[0].1,
         stable: modulus(&eigenvalues) < 1.0,
+        max_abs_x: points.iter().map(|p| p.1.abs()).fold(0.0, f64::max),
+        max_abs_v: 1.0 + value,
         eigenvalues,
         points: points
             .into_iter()
@@ -84,6 +88,8 @@ fn motion(structure: &str, w: f64) -> MotionSummary {
         start_x: x,
         eigenvalues: vec![[l, 0.0], [0.1, 0.0]],
         stable: l.abs() < 1.0,
+        max_abs_x: x.abs(),
+        max_abs_v: 1.0 + w,
         max_v: None,
         points: vec![SwitchingPoint { phase, x }],
     }
@@ -187,6 +193,8 @@ fn bifurcations() -> Vec<BifurcationSummary> {
             born,
             start_wt: at.0,
             start_x: at.1,
+            max_abs_x: at.1.abs(),
+            max_abs_v: 1.0 + value,
         }
     };
     vec![
@@ -234,6 +242,8 @@ fn synthetic(param: &str) -> Sweep {
                     start_x: f64::NAN,
                     eigenvalues: vec![],
                     stable: true,
+                    max_abs_x: 0.2,
+                    max_abs_v: 0.3,
                     max_v: Some(0.3),
                     points: vec![],
                 });
@@ -323,7 +333,18 @@ fn json_lists_branches_and_bifurcations_keyed_by_the_parameter() {
     for (k, p) in pts.iter().enumerate() {
         let mut keys: Vec<&str> = p.as_object().unwrap().keys().map(String::as_str).collect();
         keys.sort_unstable();
-        assert_eq!(keys, ["W", "eigenvalues", "stable", "start_Wt", "start_x"]);
+        assert_eq!(
+            keys,
+            [
+                "W",
+                "eigenvalues",
+                "max_abs_v",
+                "max_abs_x",
+                "stable",
+                "start_Wt",
+                "start_x"
+            ]
+        );
         let (w, phase, x, l) = fold_at((k as f64 + 0.5) / 20.0);
         assert!(close(&p["W"], w), "{p}");
         assert!(
@@ -369,6 +390,8 @@ fn json_lists_branches_and_bifurcations_keyed_by_the_parameter() {
                 "branch",
                 "eigenvalue",
                 "kind",
+                "max_abs_v",
+                "max_abs_x",
                 "start_Wt",
                 "start_x",
                 "structure"
@@ -561,7 +584,7 @@ fn figure_draws_stable_solid_unstable_dashed_and_one_mark_per_bifurcation() {
     let colour = |rank: usize| hex(category(rank));
     let (cb, ca, cbb, cc) = (colour(0), colour(1), colour(2), colour(3));
     let all = tmp("all.svg");
-    plot_sweep(&s, "synthetic", &all, true).unwrap();
+    plot_sweep(&s, "synthetic", &all, true, View::Diagram).unwrap();
     // The PNG backend draws it too.
     let png = tmp("all.png");
     plot_sweep(
@@ -569,6 +592,7 @@ fn figure_draws_stable_solid_unstable_dashed_and_one_mark_per_bifurcation() {
         "a synthetic sweep: fold, period doubling, Neimark–Sacker",
         &png,
         true,
+        View::Diagram,
     )
     .unwrap();
     assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
@@ -606,7 +630,7 @@ fn figure_draws_stable_solid_unstable_dashed_and_one_mark_per_bifurcation() {
 
     // Without the unstable parts: the same solid lines, no dash, the marks.
     let stable = tmp("stable.svg");
-    plot_sweep(&s, "synthetic", &stable, false).unwrap();
+    plot_sweep(&s, "synthetic", &stable, false, View::Diagram).unwrap();
     let svg2 = std::fs::read_to_string(&stable).unwrap();
     for c in [&ca, &cb, &cbb, &cc] {
         assert!(lines(&svg2, c, STABLE_WIDTH) >= 1, "no solid line in {c}");

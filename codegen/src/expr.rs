@@ -41,16 +41,27 @@ pub enum Node {
     Param(u32),
     /// A variable (index into the function's arguments).
     Var(u32),
+    /// `a + b`.
     Add(Id, Id),
+    /// `a * b`.
     Mul(Id, Id),
+    /// `-a`.
     Neg(Id),
+    /// `1 / a`.
     Recip(Id),
+    /// `a^n` for an integer `n`.
     Powi(Id, i32),
+    /// `sqrt(a)`.
     Sqrt(Id),
+    /// `exp(a)`.
     Exp(Id),
+    /// `ln(a)`.
     Ln(Id),
+    /// `sin(a)`.
     Sin(Id),
+    /// `cos(a)`.
     Cos(Id),
+    /// `|a|`.
     Abs(Id),
     /// `signum`, the derivative of `abs` away from zero.
     Sign(Id),

@@ -40,7 +40,6 @@ pub mod equations;
 #[cfg(feature = "generator")]
 pub mod expand;
 #[cfg(feature = "generator")]
-#[allow(missing_docs)]
 pub mod expr;
 #[cfg(feature = "generator")]
 pub mod invocation;
@@ -51,14 +50,12 @@ pub mod lower;
 #[cfg(feature = "generator")]
 pub mod lowered;
 #[cfg(feature = "generator")]
-#[allow(missing_docs)]
 pub mod model;
 #[cfg(feature = "generator")]
 pub mod model_files;
 #[cfg(feature = "generator")]
 pub mod names;
 #[cfg(feature = "generator")]
-#[allow(missing_docs)]
 pub mod parse;
 #[cfg(feature = "generator")]
 pub mod report;

@@ -12,29 +12,41 @@ pub use crate::parse::BoundOp;
 /// A named parameter with its default value.
 #[derive(Clone, Debug)]
 pub struct Param {
+    /// The name as written.
     pub name: String,
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The default value.
     pub default: f64,
     /// Bounds a run-time value must satisfy (besides being finite).
     pub bounds: Vec<(BoundOp, f64)>,
+    /// Where it is written, for diagnostics.
     pub span: Span,
 }
 
 /// A derived quantity, `let NAME = EXPR;`.
 #[derive(Clone, Debug)]
 pub struct Derived {
+    /// The name as written.
     pub name: String,
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The expression.
     pub value: Expr,
 }
 
 /// The oscillator's linear part: `x'' + 2 damping x' + stiffness x = forcing cos(frequency t) - f(x')`.
 #[derive(Clone, Debug)]
 pub struct Oscillator {
+    /// The mass `m`.
     pub mass: Expr,
+    /// The viscous damping per unit mass `d` (the equation has `2 d x'`).
     pub damping: Expr,
+    /// The stiffness per unit mass `c`.
     pub stiffness: Expr,
+    /// The forcing amplitude per unit mass `A0`.
     pub forcing: Expr,
+    /// The forcing frequency `W`.
     pub frequency: Expr,
 }
 
@@ -45,10 +57,13 @@ pub struct Boundary {
     pub label: String,
     /// The number in the label (`1`), used in mapping names.
     pub number: u32,
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The boundary's velocity.
     pub velocity: Expr,
     /// The static friction bound per unit mass, for the stick boundary.
     pub stick: Option<Expr>,
+    /// Where it is written, for diagnostics.
     pub span: Span,
 }
 
@@ -57,6 +72,7 @@ pub struct Boundary {
 pub struct Domain {
     /// The label as written (`1`).
     pub label: u32,
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
     /// Index into [`Model::boundaries`] of the lower edge (`None`: unbounded).
     pub lower: Option<usize>,
@@ -64,6 +80,7 @@ pub struct Domain {
     pub upper: Option<usize>,
     /// Friction per unit mass as a function of `v`.
     pub law: Expr,
+    /// Where it is written, for diagnostics.
     pub span: Span,
 }
 
@@ -100,13 +117,16 @@ pub struct Mapping {
     pub from: usize,
     /// Boundary index it ends on (β).
     pub to: usize,
+    /// Local, global or stick.
     pub kind: MappingKind,
 }
 
 /// A scene: which parameters stay free, which structures are studied.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The name as written.
     pub name: String,
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
     /// Indices into [`Model::params`].
     pub free: Vec<usize>,
@@ -129,21 +149,28 @@ pub struct Law {
     pub range: Expr,
     /// Kinetic friction per unit mass, any expression in `v`.
     pub kinetic: Expr,
+    /// Where it is written, for diagnostics.
     pub span: Span,
 }
 
 /// A checked model.
 #[derive(Clone, Debug)]
 pub struct Model {
+    /// The name as written.
     pub name: String,
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The parameters, in declaration order.
     pub params: Vec<Param>,
+    /// The `let`s, in declaration order.
     pub derived: Vec<Derived>,
+    /// The linear part.
     pub oscillator: Oscillator,
     /// From the lowest velocity to the highest.
     pub boundaries: Vec<Boundary>,
     /// From the lowest band to the highest.
     pub domains: Vec<Domain>,
+    /// The scenes, in declaration order.
     pub scenes: Vec<Scene>,
     /// Every mapping the topology allows.
     pub mappings: Vec<Mapping>,

@@ -72,33 +72,46 @@ pub enum BoundOp {
 /// `param NAME = VALUE, bounds...;`
 #[derive(Debug)]
 pub struct ParamAst {
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The name.
     pub name: Ident,
+    /// The default value's expression (a number).
     pub default: Expr,
+    /// The bounds as written, each with its place.
     pub bounds: Vec<(BoundOp, Expr, Span)>,
 }
 
 /// `let NAME = EXPR;`
 #[derive(Debug)]
 pub struct LetAst {
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The name.
     pub name: Ident,
+    /// The expression.
     pub value: Expr,
 }
 
 /// `oscillator { mass: .., damping: .., stiffness: .., forcing: .., frequency: .. }`
 #[derive(Debug)]
 pub struct OscillatorAst {
+    /// Where it is written, for diagnostics.
     pub span: Span,
+    /// The fields as written, each `name: expression`.
     pub fields: Vec<(Ident, Expr)>,
 }
 
 /// `boundary LABEL: v = EXPR [, stick EXPR];`
 #[derive(Debug)]
 pub struct BoundaryAst {
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The label (`Sigma1`, or the domain's number).
     pub label: Ident,
+    /// The boundary's velocity, `v = EXPR`.
     pub velocity: Expr,
+    /// The static bound, on the stick boundary.
     pub stick: Option<Expr>,
 }
 
@@ -109,24 +122,33 @@ pub struct BandAst {
     pub lower: Option<Ident>,
     /// Upper boundary (`None`: unbounded above).
     pub upper: Option<Ident>,
+    /// Where it is written, for diagnostics.
     pub span: Span,
 }
 
 /// `domain N: BAND => LAW;`
 #[derive(Debug)]
 pub struct DomainAst {
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The label (`Sigma1`, or the domain's number).
     pub label: LitInt,
+    /// The velocity band.
     pub band: BandAst,
+    /// The kinetic friction law per unit mass.
     pub law: Expr,
 }
 
 /// `scene NAME { free: A, B; structures: "..", ".."; }`
 #[derive(Debug)]
 pub struct SceneAst {
+    /// The `///` doc comments, one line each.
     pub docs: Vec<String>,
+    /// The name.
     pub name: Ident,
+    /// The parameters left free, as written.
     pub free: Vec<Ident>,
+    /// The structures to study, as string literals.
     pub structures: Vec<LitStr>,
     /// `pieces: N;` (models with a `law`): build an N-piece model.
     pub pieces: Option<LitInt>,

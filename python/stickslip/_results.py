@@ -25,6 +25,15 @@ def _complex(pairs: Optional[List[List[float]]]) -> np.ndarray:
     return a[:, 0] + 1j * a[:, 1]
 
 
+def _float(v: Optional[float]) -> float:
+    """A JSON number, ``nan`` for ``null``."""
+    return np.nan if v is None else float(v)
+
+
+def _floats(vs: List[Optional[float]]) -> np.ndarray:
+    return np.array([_float(v) for v in vs], dtype=float)
+
+
 class Result:
     """A result: its JSON as the CLI prints it with ``--json``."""
 
@@ -198,7 +207,9 @@ class Sweep(Result):
 
     def branch_arrays(self, branch: int) -> Dict[str, np.ndarray]:
         """Branch ``branch``'s points as arrays: the parameter, ``start_Wt``,
-        ``start_x``, ``eigenvalues`` (``n × 2`` complex), ``stable``."""
+        ``start_x``, ``eigenvalues`` (``n × 2`` complex), ``stable``, and the
+        amplitudes ``max_abs_x``, ``max_abs_v`` (the largest ``|x|``, ``|v|``
+        over the cycle; ``nan`` where not evaluated)."""
         pts = self.branches[branch]["points"]
         return {
             self.param: np.array([p[self.param] for p in pts], dtype=float),
@@ -206,11 +217,16 @@ class Sweep(Result):
             "start_x": np.array([p["start_x"] for p in pts], dtype=float),
             "eigenvalues": np.array([_complex(p["eigenvalues"]) for p in pts]).reshape(len(pts), -1),
             "stable": np.array([p["stable"] for p in pts], dtype=bool),
+            "max_abs_x": _floats([p.get("max_abs_x") for p in pts]),
+            "max_abs_v": _floats([p.get("max_abs_v") for p in pts]),
         }
 
     def to_pandas(self) -> Any:
         """One row per motion at each grid value: the parameter,
-        ``structure``, ``N``, ``start_Wt``, ``start_x``, ``stable``, ``|λ|max``."""
+        ``structure``, ``N``, ``start_Wt``, ``start_x``, ``stable``,
+        ``lambda_max`` (the largest ``|λ|``), and the amplitudes
+        ``max_abs_x``, ``max_abs_v`` (the largest ``|x|``, ``|v|`` over the
+        cycle): the frequency response, ``df.plot.scatter(param, "max_abs_x")``."""
         rows = []
         for p in self.points:
             for m in p["motions"]:
@@ -224,6 +240,8 @@ class Sweep(Result):
                         "start_x": m.get("start_x"),
                         "stable": m.get("stable"),
                         "lambda_max": float(np.abs(lam).max()) if lam.size else np.nan,
+                        "max_abs_x": _float(m.get("max_abs_x")),
+                        "max_abs_v": _float(m.get("max_abs_v")),
                     }
                 )
         return _pandas().DataFrame(rows)

@@ -139,7 +139,28 @@ def test_sweep_is_the_clis(paper, cli):
     assert s.values.shape == (21,)
     assert len(s.to_pandas()) == sum(len(p["motions"]) for p in s.points)
     b = s.branch_arrays(0)
-    assert b["W"].shape == b["stable"].shape
+    assert b["W"].shape == b["stable"].shape == b["max_abs_x"].shape
+
+
+def test_sweep_amplitudes_are_the_clis_csv(paper, cli, tmp_path):
+    """The frequency response: every motion's max |x| and max |v| in
+    ``to_pandas()``, as the CLI's ``--csv`` writes them."""
+    s = paper.sweep("W", np.linspace(3.0, 4.0, 11), Q0=70)
+    path = tmp_path / "s.csv"
+    out = cli.run("sweep", "--param", "W=3:4:11", "--set", "Q0=70", "--csv", str(path))
+    assert out.returncode == 0, out.stderr
+    rows = list(csv.DictReader(io.StringIO(path.read_text())))
+    df = s.to_pandas()
+    assert len(df) == len(rows)
+    assert list(df["structure"]) == [r["structure"] for r in rows]
+    for col in ("W", "start_x", "max_abs_x", "max_abs_v"):
+        want = [float(r[col]) if r[col] else np.nan for r in rows]
+        np.testing.assert_allclose(df[col], want, rtol=1e-12)
+    # Every switching point lies within the amplitude.
+    for p in s.points:
+        for m in p["motions"]:
+            if m["structure"] != "NM":
+                assert abs(m["start_x"]) <= m["max_abs_x"] + 1e-12
 
 
 def test_sweep_without_unstable_is_the_clis(paper, cli):

@@ -342,7 +342,7 @@ def test_basins_agree_with_the_cli(cli, paper, tmp_path):
     b = paper.basins(x=BASIN_X, y=BASIN_V, samples=60, out=out, progress=False, **BASIN_SET)
     assert b.to_dict() == theirs
     assert out.read_bytes() == file
-    # Three coexisting motions (README, "Chaos and basins").
+    # Three coexisting motions (the guide, "Chaos and basins").
     assert len(b.attractors) == 3 and b.names == [a["name"] for a in theirs["attractors"]]
     nx, nv = BASIN_X[2], BASIN_V[2]
     assert b.ids.shape == (nv, nx) and len(rows) == nx * nv + 60

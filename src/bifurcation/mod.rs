@@ -4,6 +4,31 @@
 //! doubling, Neimark–Sacker) located by test functions on the eigenvalues of
 //! `DP`, the branches born there, and the non-smooth transitions (SPEC §3)
 //! that end a branch.
+//!
+//! ```
+//! use stickslip::bifurcation::{follow, ContinuationOptions, EndReason, Start, TransitionKind};
+//! use stickslip::dynamics::simulate::{SimOptions, Simulator};
+//! use stickslip::models::paper::{Paper, Params};
+//! use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+//! use stickslip::ParamSet;
+//!
+//! // The stick-slip motion at W = 3.7, Q0 = 70, followed along W in [3.6, 3.9].
+//! let p = Params { W: 3.7, Q0: 70.0, ..Params::default() };
+//! let sim = Simulator::<Paper>::new(p, SimOptions::default())?;
+//! let Attractor::Periodic(m) = attractor::find(&sim, sim.start(0.0, 0.0, 0.0)?, AttractorOptions::default())?
+//! else {
+//!     panic!("a periodic motion")
+//! };
+//! let w = Params::index_of("W").expect("a parameter");
+//! let start = Start { structure: m.structure.clone(), value: 3.7, points: m.points.clone(), direction: None };
+//! let opts = ContinuationOptions { bounds: (3.6, 3.9), ..ContinuationOptions::default() };
+//! let branch = follow::<Paper>(&p, w, &start, &opts)?;
+//! // Upwards it ends where its stick onset turns passable, located to 1e-12.
+//! let end = branch.ends.iter().find(|e| e.at.value > 3.7).expect("an upper end");
+//! assert!(matches!(end.reason, EndReason::Transition { kind: TransitionKind::PassableOnset, .. }));
+//! assert!((end.at.value - 3.7550059120).abs() < 1e-8);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use serde::Serialize;
 

@@ -14,7 +14,7 @@ use super::error::CliError;
 /// Output options of `orbit` and `simulate`.
 #[derive(Args, Clone)]
 pub struct OutputArgs {
-    /// Print JSON (schema in the README, "Periodic motions").
+    /// Print JSON (schema in the guide, "Periodic motions").
     #[arg(long)]
     pub json: bool,
     /// Draw the six panels of the motion into FILE (.svg or .png).

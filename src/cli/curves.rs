@@ -38,7 +38,7 @@ pub struct CurvesArgs {
     /// (repeatable), solved exactly.
     #[arg(long, value_name = "NAME=V1,V2,...")]
     at: Vec<String>,
-    /// Print JSON (schema in the README, "Regime maps").
+    /// Print JSON (schema in the guide, "Regime maps").
     #[arg(long)]
     json: bool,
     /// Draw the regime map from the curves into FILE (.svg or .png).
@@ -53,11 +53,11 @@ pub struct CurvesArgs {
     spread: usize,
     /// Sweep the box's four edges too (the default): every curve that
     /// leaves the box crosses one.
-    // Read only by clap: it makes `--edges` (the opt-in until stop 38)
-    // accepted and lets the later of `--edges` / `--no-edges` win.
+    // Read only by clap: `--edges` is accepted (the default) and the later
+    // of `--edges` / `--no-edges` wins.
     #[arg(long, overrides_with = "no_edges")]
     edges: bool,
-    /// Do not sweep the box's edges: fewer curves, shorter runs (README,
+    /// Do not sweep the box's edges: fewer curves, shorter runs (the guide,
     /// "Regime maps").
     #[arg(long, overrides_with = "edges")]
     no_edges: bool,

@@ -14,6 +14,7 @@ mod merge;
 mod models;
 mod orbit;
 mod outcome;
+mod reference;
 mod simulate;
 mod sweep;
 mod trade;
@@ -79,6 +80,9 @@ enum Command {
     /// transient at each parameter value, swept up and down (hysteresis),
     /// with the largest Lyapunov exponent and the sweep's branches.
     OrbitDiagram(diagram::DiagramArgs),
+    /// Print the command-line reference in Markdown (the guide's page).
+    #[command(hide = true)]
+    Reference,
 }
 
 impl Cli {
@@ -100,6 +104,7 @@ impl Cli {
             Command::Lyapunov(args) => lyapunov::run(args)?,
             Command::Basins(args) => basins::run(args)?,
             Command::OrbitDiagram(args) => diagram::run(args)?,
+            Command::Reference => reference::run(),
         };
         Ok(outcome.print())
     }

@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use clap::Args;
-use stickslip::output::figure::sweep::plot_sweep;
+use clap::{Args, ValueEnum};
+use stickslip::output::figure::sweep::{plot_sweep, View};
 use stickslip::output::sweep_table;
 use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
@@ -25,12 +25,23 @@ pub struct SweepArgs {
     /// The other parameters, e.g. `--set Q0=70`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
-    /// Print JSON (schema in the README, "Bifurcations and maps").
+    /// Print JSON (schema in the guide, "One-parameter studies").
     #[arg(long)]
     json: bool,
-    /// Draw the bifurcation diagram into FILE (.svg or .png).
+    /// Draw the sweep into FILE (.svg or .png): the bifurcation diagram, or
+    /// the frequency response with `--view frc`.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
+    /// What `--plot` draws: `diagram` (switching phases and displacements,
+    /// eigenvalues) or `frc` (each motion's amplitude, max |x| and max |v|
+    /// over its cycle, against the parameter).
+    #[arg(long, value_enum, default_value_t = ViewArg::Diagram)]
+    view: ViewArg,
+    /// Write the motions at the grid values as CSV, one row per motion:
+    /// the parameter, structure, N, start_Wt, start_x, stable, |λ|max,
+    /// max_abs_x, max_abs_v.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
     /// Leave out unstable motions: the branches' unstable stretches and the
     /// unstable motions at the grid points (the view of sweeps before
     /// arclength continuation). Bifurcations and transitions stay.
@@ -57,6 +68,15 @@ pub struct SweepArgs {
     /// doublings located.
     #[arg(long, value_name = "N", default_value_t = stickslip::study::sweep::MAX_PERIOD)]
     max_period: u32,
+}
+
+/// The figures `sweep --plot` draws.
+#[derive(Clone, Copy, ValueEnum)]
+enum ViewArg {
+    /// The bifurcation diagram.
+    Diagram,
+    /// The frequency response: amplitudes against the parameter.
+    Frc,
 }
 
 /// The sweep as text or JSON, and its figure.
@@ -93,7 +113,22 @@ impl WithModel for SweepCmd {
         let unstable = !self.args.no_unstable;
         if let Some(path) = &self.args.plot {
             let title = format!("{} sweep of {name} ({set})", M::INFO.name);
-            plot_sweep(&sw, &title, path, unstable).map_err(CliError::Figure)?;
+            let view = match self.args.view {
+                ViewArg::Diagram => View::Diagram,
+                ViewArg::Frc => View::Frc,
+            };
+            plot_sweep(&sw, &title, path, unstable, view).map_err(CliError::Figure)?;
+        }
+        if let Some(path) = &self.args.csv {
+            let shown = if unstable {
+                sw.clone()
+            } else {
+                sw.stable_only()
+            };
+            std::fs::write(path, sweep_table::csv(&shown)).map_err(|source| CliError::Write {
+                path: path.clone(),
+                source,
+            })?;
         }
         let stdout = if self.args.json {
             if unstable {

@@ -20,6 +20,25 @@
 //!   numerically; its [`SmoothInfo`] is an [`Identity`] plus the law. Its
 //!   `pieces` scenes are ordinary [`Model`]s.
 //!
+//! ```
+//! use stickslip::models::paper::{Paper, Params};
+//! use stickslip::{FrictionOscillator, Model, ParamSet};
+//!
+//! // Parameters by name, checked (bounds, boundary order, static ≥ kinetic).
+//! let p = Params::from_pairs(Paper::INFO, &[("W", 3.7), ("Q0", 70.0)])?;
+//! assert_eq!(p.W, 3.7);
+//! assert!(Params::from_pairs(Paper::INFO, &[("W", -1.0)]).is_err());
+//! // Domain 1's effective damping 2 d_j and stiffness (SPEC Eq. A.1).
+//! let j = Paper::INFO.domains.iter().position(|d| d.label == 1).expect("domain 1");
+//! let co = Paper::coefficients(&p, j);
+//! assert!((co.two_d - 0.10).abs() < 1e-12 && (co.c - 30.0).abs() < 1e-12);
+//! // Its closed-form flow from (x, v) = (0, 3.5) at W t = 0 to W t = 0.1.
+//! let [x, v] = Paper::flow(&p, j, 0.0, 3.5, 0.0, 0.1);
+//! assert!(x > 0.0 && v.is_finite());
+//! assert_eq!(Paper::oscillator(&p).frequency, 3.7);
+//! # Ok::<(), stickslip::ParamError>(())
+//! ```
+//!
 //! One registry holds them all: [`crate::models::ALL`] lists an [`Entry`] per
 //! model and scene, saying which kind it is, and [`crate::models::visit`]
 //! runs a [`ModelVisitor`] — one method per kind — with the one chosen by name.

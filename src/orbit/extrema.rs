@@ -91,6 +91,11 @@ impl SegmentFlow {
         })
     }
 
+    /// The forcing frequency `W` (phase per unit time).
+    pub fn frequency(&self) -> f64 {
+        self.w
+    }
+
     /// The state at phase `phi`.
     #[inline]
     pub fn at(&self, phi: f64) -> FlowState {

@@ -1,5 +1,5 @@
 //! A curves run as text (one block per curve, then the codimension-two
-//! points) or as JSON (the schema in the README, "Regime maps"): the
+//! points) or as JSON (the schema in the guide, "Regime maps"): the
 //! parameters' names are keys of the ends and the codim-2 points.
 
 use std::fmt::Write;
@@ -25,7 +25,7 @@ const KEYS: [&str; 10] = [
 fn clash(name: &str) -> serde_json::Error {
     serde::ser::Error::custom(format!(
         "the parameter `{name}` has the name of a key of the curves' JSON \
-         (README, \"Regime maps\"), so its value could not be told apart; \
+         (the guide, \"Regime maps\"), so its value could not be told apart; \
          rename the parameter in the model"
     ))
 }

@@ -1,6 +1,6 @@
 //! A sweep as text (transitions, bifurcations, branches, then the motions at
-//! each grid point) or as JSON (the schema in the README, "Bifurcations and
-//! maps").
+//! each grid point) or as JSON (the schema in the guide, "One-parameter
+//! studies").
 
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -150,10 +150,11 @@ fn complex([re, im]: [f64; 2]) -> String {
 pub fn text(sweep: &Sweep, from: f64, to: f64, count: usize, set: &str, unstable: bool) -> String {
     let name = &sweep.param;
     let mut out = format!("sweep of {name} over [{from}, {to}] ({count} points), {set}\n\n");
-    out.push_str("transitions:\n");
-    for t in &sweep.transitions {
+    out.push_str("transitions (numbered as in the figure):\n");
+    for (k, t) in sweep.transitions.iter().enumerate() {
         out.push_str(&format!(
-            "  {name} = {:<18.12} {:<16} {} -> {}{}\n",
+            "  {:>3}  {name} = {:<18.12} {:<16} {} -> {}{}\n",
+            k + 1,
             t.value,
             t.kind.name(),
             t.from,
@@ -316,8 +317,48 @@ fn branch_block(name: &str, b: &BranchSummary, runs: &[Run]) -> String {
     out
 }
 
+/// The motions at the grid values as CSV, one row per motion: the
+/// parameter (the column named after it), `structure`, `N`, `start_Wt`,
+/// `start_x`, `stable`, `lambda_max` (the largest `|λ|`, empty without
+/// eigenvalues), `max_abs_x`, `max_abs_v` (empty where not finite).
+pub fn csv(sweep: &Sweep) -> String {
+    let num = |v: f64| {
+        if v.is_finite() {
+            format!("{v:?}")
+        } else {
+            String::new()
+        }
+    };
+    let mut out = format!(
+        "{},structure,N,start_Wt,start_x,stable,lambda_max,max_abs_x,max_abs_v\n",
+        sweep.param
+    );
+    for p in &sweep.points {
+        for m in &p.motions {
+            let lambda = m
+                .eigenvalues
+                .iter()
+                .map(|e| e[0].hypot(e[1]))
+                .fold(f64::NAN, f64::max);
+            out.push_str(&format!(
+                "{},\"{}\",{},{},{},{},{},{},{}\n",
+                num(p.value),
+                m.structure,
+                m.n,
+                num(m.start_wt),
+                num(m.start_x),
+                m.stable,
+                num(lambda),
+                num(m.max_abs_x),
+                num(m.max_abs_v),
+            ));
+        }
+    }
+    out
+}
+
 /// The keys of the objects that also carry the parameter's value.
-const KEYS: [&str; 17] = [
+const KEYS: [&str; 19] = [
     "motions",
     "from",
     "to",
@@ -335,12 +376,14 @@ const KEYS: [&str; 17] = [
     "branch",
     "born",
     "max_period",
+    "max_abs_x",
+    "max_abs_v",
 ];
 
 fn clash(name: &str) -> serde_json::Error {
     serde::ser::Error::custom(format!(
         "the swept parameter `{name}` has the name of a key of the sweep's JSON \
-         (README, \"Bifurcations and maps\"), so its value could not be told apart; \
+         (the guide, \"One-parameter studies\"), so its value could not be told apart; \
          rename the parameter in the model"
     ))
 }
@@ -381,7 +424,7 @@ struct TransitionFields<'a> {
 /// `param`; `points` (each grid value and the motions there);
 /// `transitions` (the value, `from`, `to`, `kind`, `boundary`); `branches`
 /// (`id`, `structure`, `N`, `points` in arclength order with `start_Wt`,
-/// `start_x`, `eigenvalues`, `stable`, and `ends` with `reason` and, where
+/// `start_x`, `eigenvalues`, `stable`, `max_abs_x`, `max_abs_v`, and `ends` with `reason` and, where
 /// they apply, `boundary` and `detail`); `bifurcations` (the value, `kind`,
 /// `structure`, `N`, `eigenvalue`, `branch`, `born`, `start_Wt`,
 /// `start_x`); `cuts` (the value, `structure`, `N`, `max_period`: branches

@@ -31,7 +31,7 @@
 //! The flows of the smooth laws' N-piece models are continuous across their
 //! velocity boundaries, and an eigenvalue test function of the motion tends
 //! to the reduced motion's at the end. Measured on `stribeck::pl4` and
-//! `stribeck8` (`README`, "Vanishing excursions"): ten of the eleven ends
+//! `stribeck8` (the guide, "Regime maps"): ten of the eleven ends
 //! so found lie within 1e-9 of a codimension-two point that other curves
 //! locate independently in the same run without this solve.
 

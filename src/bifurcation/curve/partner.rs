@@ -251,13 +251,12 @@ pub const ADMISSIBLE_TO: f64 = COMPANION_SLACK;
 /// the segment's end, its margin zero or a rounding's square root off it
 /// (the tracer watches it so).
 ///
-/// Until stop 42 a condition within `SAME_EVENT` of zero at a curve's
-/// start was never watched along it, and a curve could run on where its
-/// motion no longer exists: on the paper model (W = 3…4 × Q0 = 65…75) a
-/// passable-onset curve of `P_{(3_31 0_11 3_13 4_33)^2 3_33 4_33 3_31 0_11
-/// 3_13 4_33 3_33 4_33}^5` ran across its band's tip at W = 3.5838,
+/// Without a watch on a condition within `SAME_EVENT` of zero at a curve's
+/// start, a curve can run on where its motion no longer exists: on the
+/// paper model (W = 3…4 × Q0 = 65…75) a passable-onset curve of `P_{(3_31 0_11 3_13 4_33)^2 3_33 4_33 3_31 0_11
+/// 3_13 4_33 3_33 4_33}^5` runs across its band's tip at W = 3.5838,
 /// Q0 = 72.017 to Q0 = 71.97, where its `3_33` flow crosses Σ1 (margin
-/// −5.1e-7 at Q0 = 72.014, −7.7e-6 at its end). Such a condition is now
+/// −5.1e-7 at Q0 = 72.014, −7.7e-6 at its end). Such a condition is
 /// watched to [`COMPANION_SLACK`] of its scale; this check stays as the
 /// branch switch's guard and the audit's measure
 /// (`examples/curves_audit.rs`).

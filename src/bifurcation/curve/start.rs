@@ -644,8 +644,8 @@ fn halves_residual<M: Model>(
 /// (by the event search) is a stick's end whose smooth margin is not the
 /// smallest (a stick that never ends), or whose extremum of `Fnf` lies
 /// within `1e-3` rad of the stick's start (the margin vanishes
-/// quadratically; at its exit the exit's rate is the margin, a simple zero,
-/// since stop 39), or if a segment's duration is below `1e-3` rad
+/// quadratically; at its exit the exit's rate is the margin, a simple
+/// zero), or if a segment's duration is below `1e-3` rad
 /// there (a segment shrinking to nothing: the structure's equations
 /// degenerate on the curve, which the motion on the other side of the
 /// transition carries). For an

@@ -256,7 +256,7 @@ impl<M: Model> Tracer<'_, M> {
     /// its largest (`None` for the no-motion regime or where it cannot be
     /// assembled), appended to a failed end's reason: near zero where the
     /// motion is degenerate. Measured at the failed ends of
-    /// `benches/curves-runs.sh` (stop 35): Shaw's undamped pure slip
+    /// `benches/curves-runs.sh`: Shaw's undamped pure slip
     /// `P_{1_11 2_11}` near W = 1/2, where the half cycle lasts one free
     /// period and the motion stops being isolated, 1.4e-6; s8full's two
     /// passable onsets whose excursion between two sticks shrinks to
@@ -494,10 +494,8 @@ impl<M: Model> Tracer<'_, M> {
     /// `stribeck::pl4`, whose static and sliding friction agree at the
     /// belt's speed) only because `DP` takes such a flow together with its
     /// stick ([`monodromy_spectral`](crate::orbit::periodic::monodromy_spectral)):
-    /// until stop 37 the product of the two carried `(v − V) / a`, a pole
-    /// off the motion, and this solve did not converge there (s8full's
-    /// period-doubling test function jumped from 0 to 6.2 over one Newton
-    /// step of 1.2e-4 in W; the end stayed at the bracket's trial, 5.2e-5).
+    /// the two taken apart carry `(v − V) / a`, a pole off the motion, on
+    /// which this solve does not converge.
     fn pair_point_with(&mut self, prev: &Sample, id: ConditionId, bound: f64) -> Option<Sample> {
         if !matches!(
             self.sys.eval.condition,

@@ -128,6 +128,8 @@ mod tests {
             start_x: y,
             eigenvalues: vec![],
             stable,
+            max_abs_x: y.abs(),
+            max_abs_v: y.abs(),
             points: vec![],
         }
     }

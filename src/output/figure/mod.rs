@@ -7,8 +7,9 @@
 //! [`palette`]. One file per figure:
 //!
 //! * [`orbit`] — a motion's time history in six panels (the paper's Figs. 12–16);
-//! * [`sweep`] — a sweep's bifurcation diagram (Figs. 9–10), its branches
-//!   drawn by [`branch`], its bifurcations marked by [`symbol`];
+//! * [`sweep`] — a sweep's bifurcation diagram (Figs. 9–10) or frequency
+//!   response ([`sweep_panels`]), its branches drawn by [`branch`], its
+//!   bifurcations marked by [`symbol`];
 //! * [`map`] — a parameter map (Fig. 11), optionally with exact curves over it;
 //! * [`regime`] — a regime map from curves alone: regions filled and
 //!   numbered, curves by kind, codimension-two points marked;
@@ -27,6 +28,7 @@ pub mod orbit;
 pub mod palette;
 pub mod regime;
 pub mod sweep;
+pub mod sweep_panels;
 pub mod symbol;
 pub mod trade;
 

@@ -24,7 +24,7 @@ use super::layout::{line_height, text_width, Rect};
 use super::legend::{Entry, Legend, LegendLayout, Mark};
 use super::map::set_colours;
 use super::symbol::{Symbol, INK};
-use super::{save, DrawError, Figure, AXIS_SIZE, FAMILY, TICK_SIZE, TITLE_SIZE};
+use super::{pixels, save, DrawError, Figure, AXIS_SIZE, FAMILY, TICK_SIZE, TITLE_SIZE};
 use crate::bifurcation::TransitionKind;
 use crate::study::curves::regions::raster::clip;
 use crate::study::curves::{CurveSet, Regions};
@@ -361,14 +361,26 @@ impl Figure for RegimeFigure<'_> {
         draw_curves(&mut chart, root, set, (lo, hi), false)?;
         // Each region's number at its sample, on a light box.
         let h = line_height(KEY_SIZE);
+        let plot = pixels(chart.plotting_area());
         for (k, r) in regions.regions.iter().enumerate() {
             let (x, y) = (r.sample[0], r.sample[1]);
             if !(x.is_finite() && y.is_finite()) {
                 continue;
             }
             let text = (k + 1).to_string();
-            let c = chart.backend_coord(&(x, y));
             let w = text_width(&text, KEY_SIZE) + 6;
+            // Kept inside the plot, also for a region whose sample lies on the box's edge.
+            let c = chart.backend_coord(&(x, y));
+            let c = (
+                c.0.clamp(
+                    plot.x0 + w / 2 + 1,
+                    (plot.x1 - w / 2 - 1).max(plot.x0 + w / 2 + 1),
+                ),
+                c.1.clamp(
+                    plot.y0 + h / 2 + 1,
+                    (plot.y1 - h / 2 - 1).max(plot.y0 + h / 2 + 1),
+                ),
+            );
             let b = Rect::at(c.0 - w / 2, c.1 - h / 2, (w, h));
             root.draw(&Rectangle::new(
                 [(b.x0, b.y0), (b.x1, b.y1)],

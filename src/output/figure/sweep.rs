@@ -14,9 +14,12 @@
 //! Transitions crowd (several within a pixel where a motion grazes and
 //! sticks in turn), so they are numbered in the order of the parameter: the
 //! numbers stand over the upper panels, stacked in rows so that no two
-//! overlap ([`tags`]; transitions within a pixel share one tag, `3–6`), and
-//! a key under the panels lists each one in full — value, kind, the motions
-//! on either side, the boundary — after the legend of the structures.
+//! overlap ([`tags`]; transitions within a pixel share one tag, `3–6`). The
+//! text output of `sweep` lists them with the same numbers, in full.
+//!
+//! The same drawing serves two views ([`View`]): the bifurcation diagram
+//! and the frequency response (each motion's amplitude against the
+//! parameter), whose panels [`super::sweep_panels`] lists.
 
 use std::path::Path;
 
@@ -24,29 +27,21 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::branch::{curves, Quantity, Stroke};
+use super::branch::{curves, Stroke};
 use super::layout::{line_height, place_near, stack, text_width, Rect};
 use super::legend::{Entry, Legend, LegendLayout, Mark};
 use super::palette::category;
+pub use super::sweep_panels::View;
+use super::sweep_panels::{Panel, Range};
 use super::symbol::{Symbol, INK, RADIUS};
 use super::{
     pixels, save, DrawError, Figure, AXIS_SIZE, CAPTION_SIZE, FAMILY, LIGHT_GRID, REFERENCE_GREY,
     TICK_SIZE, TITLE_SIZE,
 };
-use crate::study::sweep::{BifurcationSummary, MotionSummary, Sweep, Transition, TransitionKind};
+use crate::study::sweep::{BifurcationSummary, Sweep, TransitionKind};
 use stickslip_codegen::structure::with_periods;
 
-/// Panel titles, in drawing order.
-pub const SWEEP_TITLES: [&str; 4] = [
-    "switching phase W t mod 2π",
-    "switching displacement x",
-    "eigenvalue moduli |λ|",
-    "eigenvalue real parts Re λ",
-];
-
 const WIDTH: u32 = 1200;
-/// Height of the title and the four panels.
-const PANELS_HEIGHT: u32 = 1000;
 /// Margin around the key under the panels.
 const KEY_MARGIN: i32 = 24;
 /// Text size of the tags and the key.
@@ -121,28 +116,6 @@ fn kind_name(k: TransitionKind) -> &'static str {
     }
 }
 
-/// `Sigma3` as `Σ3`.
-fn boundary_name(label: &str) -> String {
-    label
-        .strip_prefix("Sigma")
-        .map_or_else(|| label.to_string(), |n| format!("Σ{n}"))
-}
-
-/// A transition's line in the key.
-fn describe(param: &str, t: &Transition) -> String {
-    let on = t
-        .boundary
-        .as_deref()
-        .map_or_else(String::new, |b| format!(" on {}", boundary_name(b)));
-    format!(
-        "{param} = {:.6}  {}: {} → {}{on}",
-        t.value,
-        kind_name(t.kind),
-        t.from,
-        t.to
-    )
-}
-
 /// A tag over a panel: the numbers of one or more transitions.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tag {
@@ -198,7 +171,7 @@ pub fn tags(lines: &[i32], left: i32, right: i32) -> Vec<Tag> {
 pub struct Label {
     /// `F1`, `PD2`, …
     pub text: String,
-    /// The panel (0–3, in the order of [`SWEEP_TITLES`]).
+    /// The panel (in the order of [`View::panels`]).
     pub panel: usize,
     /// The box of the bifurcation's mark, pixels of the image.
     pub mark: Rect,
@@ -214,6 +187,8 @@ pub struct SweepFigure<'a> {
     title: &'a str,
     /// Whether unstable stretches and motions are drawn.
     unstable: bool,
+    /// Which panels.
+    view: View,
     /// Structures in order of first appearance (their colours' order).
     names: Vec<String>,
     /// Indices of the transitions in the order of the parameter.
@@ -233,9 +208,15 @@ impl<'a> SweepFigure<'a> {
     /// The figure of `sweep`; with `unstable` false, without the branches'
     /// unstable stretches and the unstable motions at the grid points.
     pub fn showing(sweep: &'a Sweep, title: &'a str, unstable: bool) -> Self {
+        Self::view(sweep, title, unstable, View::Diagram)
+    }
+
+    /// The figure of `sweep` in `view`.
+    pub fn view(sweep: &'a Sweep, title: &'a str, unstable: bool, view: View) -> Self {
         let mut names: Vec<String> = Vec::new();
+        // NM has no switching points, but an amplitude.
         let mut note = |name: &str| {
-            if name != "NM" && !names.iter().any(|n| n == name) {
+            if (name != "NM" || view == View::Frc) && !names.iter().any(|n| n == name) {
                 names.push(name.to_string());
             }
         };
@@ -326,23 +307,7 @@ impl<'a> SweepFigure<'a> {
             KEY_SIZE,
             false,
         );
-        let key = Legend::new(
-            Some("transitions (numbered over the upper panels)".to_string()),
-            order
-                .iter()
-                .enumerate()
-                .map(|(k, &i)| {
-                    let t = &sweep.transitions[i];
-                    Entry::new(
-                        Mark::Tag(format!("{}", k + 1)),
-                        describe(sweep.param.as_str(), t),
-                    )
-                })
-                .collect(),
-            KEY_SIZE,
-            false,
-        );
-        let legends = [structures, lines, bifurcations, key]
+        let legends = [structures, lines, bifurcations]
             .into_iter()
             .filter(|l| !l.entries.is_empty())
             .map(|l| {
@@ -354,6 +319,7 @@ impl<'a> SweepFigure<'a> {
             sweep,
             title,
             unstable,
+            view,
             names,
             order,
             marks,
@@ -363,7 +329,7 @@ impl<'a> SweepFigure<'a> {
 
     /// Where the legends go under the panels (upper-left corners).
     fn key_origins(&self) -> Vec<(i32, i32)> {
-        let mut y = PANELS_HEIGHT as i32 + KEY_MARGIN / 2;
+        let mut y = self.view.panels_height() as i32 + KEY_MARGIN / 2;
         self.legends
             .iter()
             .map(|(_, layout)| {
@@ -381,45 +347,27 @@ impl<'a> SweepFigure<'a> {
     }
 }
 
-/// Draw `sweep` into `path` (SVG or PNG by extension); with `unstable`
-/// false, without its unstable parts.
-pub fn plot_sweep(sweep: &Sweep, title: &str, path: &Path, unstable: bool) -> Result<(), String> {
-    save(&SweepFigure::showing(sweep, title, unstable), path)
+/// Draw `sweep` in `view` into `path` (SVG or PNG by extension); with
+/// `unstable` false, without its unstable parts.
+pub fn plot_sweep(
+    sweep: &Sweep,
+    title: &str,
+    path: &Path,
+    unstable: bool,
+    view: View,
+) -> Result<(), String> {
+    save(&SweepFigure::view(sweep, title, unstable, view), path)
 }
-
-type Getter = fn(&MotionSummary) -> Vec<f64>;
-const GETTERS: [Getter; 4] = [
-    |m| m.points.iter().map(|p| p.phase).collect(),
-    |m| m.points.iter().map(|p| p.x).collect(),
-    |m| m.eigenvalues.iter().map(|e| e[0].hypot(e[1])).collect(),
-    |m| m.eigenvalues.iter().map(|e| e[0]).collect(),
-];
-const QUANTITIES: [Quantity; 4] = [
-    |q| q.points.iter().map(|p| p.phase).collect(),
-    |q| q.points.iter().map(|p| p.x).collect(),
-    |q| q.eigenvalues.iter().map(|e| e[0].hypot(e[1])).collect(),
-    |q| q.eigenvalues.iter().map(|e| e[0]).collect(),
-];
-/// Where a bifurcation stands in each panel: its first switching point's
-/// phase and displacement, its critical eigenvalue's modulus and real part.
-const MARKED: [fn(&BifurcationSummary) -> f64; 4] = [
-    |b| b.start_wt,
-    |b| b.start_x,
-    |b| b.eigenvalue[0].hypot(b.eigenvalue[1]),
-    |b| b.eigenvalue[0],
-];
 
 impl Figure for SweepFigure<'_> {
     fn size(&self) -> (u32, u32) {
+        let panels = self.view.panels_height() as i32;
         let bottom = self
             .key_origins()
             .last()
             .zip(self.legends.last())
-            .map_or(PANELS_HEIGHT as i32, |(o, (_, l))| o.1 + l.bounds.y1);
-        (
-            WIDTH,
-            (bottom + KEY_MARGIN).max(PANELS_HEIGHT as i32) as u32,
-        )
+            .map_or(panels, |(o, (_, l))| o.1 + l.bounds.y1);
+        (WIDTH, (bottom + KEY_MARGIN).max(panels) as u32)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), DrawError> {
@@ -473,9 +421,10 @@ impl SweepFigure<'_> {
         let mut placed = Vec::new();
         let mut labels = Vec::new();
         root.fill(&WHITE)?;
-        let (panels, _) = root.split_vertically(PANELS_HEIGHT);
+        let (panels, _) = root.split_vertically(self.view.panels_height());
         let body = panels.titled(self.title, (FAMILY, TITLE_SIZE).into_font())?;
-        let areas = body.split_evenly((2, 2));
+        let areas = body.split_evenly(self.view.grid());
+        let top_row = self.view.grid().1;
         let (lo, hi) = extent(
             sweep
                 .points
@@ -501,10 +450,15 @@ impl SweepFigure<'_> {
             .iter()
             .map(|&i| sweep.transitions[i].value)
             .collect();
-        for (panel, area) in areas.iter().enumerate() {
-            let get = GETTERS[panel];
-            let quantity = QUANTITIES[panel];
-            let period = (panel == 0).then_some(std::f64::consts::TAU);
+        for ((panel, area), spec) in areas.iter().enumerate().zip(self.view.panels()) {
+            let Panel {
+                title,
+                motion: get,
+                sample: quantity,
+                marked,
+                range,
+            } = *spec;
+            let period = (range == Range::Phase).then_some(std::f64::consts::TAU);
             let branch_curves: Vec<(usize, Vec<_>)> = sweep
                 .branches
                 .iter()
@@ -526,18 +480,29 @@ impl SweepFigure<'_> {
                         .chain(branch_curves.iter().flat_map(|(_, cs)| {
                             cs.iter().flat_map(|c| c.points.iter().map(|p| p.1))
                         }))
-                        .chain(sweep.bifurcations.iter().map(MARKED[panel])),
+                        .chain(sweep.bifurcations.iter().map(marked)),
                 );
-            if panel == 0 {
-                (y0, y1) = (0.0, std::f64::consts::TAU);
+            let mut caption = title.to_string();
+            match range {
+                Range::Phase => (y0, y1) = (0.0, std::f64::consts::TAU),
+                Range::Amplitude => y0 = 0.0,
+                Range::Eigenvalue { level, clip } => {
+                    if y0 < clip.0 || y1 > clip.1 {
+                        caption = format!("{title} (clipped to [{}, {}])", clip.0, clip.1);
+                    }
+                    (y0, y1) = (y0.max(clip.0).min(level), y1.min(clip.1).max(level));
+                }
+                Range::Data => {}
             }
             if !(y0.is_finite() && y1.is_finite()) || y0 >= y1 {
                 (y0, y1) = (y0.min(0.0) - 1.0, y1.max(0.0) + 1.0);
             }
             let pad = 0.05 * (y1 - y0);
+            // Values past a clipped range are drawn on its edge.
+            let clamp = |y: f64| y.clamp(y0 - pad, y1 + pad);
             let below = area
                 .margin(12, 12, 12, 12)
-                .titled(SWEEP_TITLES[panel], (FAMILY, CAPTION_SIZE).into_font())?;
+                .titled(caption.as_str(), (FAMILY, CAPTION_SIZE).into_font())?;
             let builder = |top: u32| {
                 let mut b = ChartBuilder::on(&below);
                 b.margin_top(top)
@@ -548,7 +513,7 @@ impl SweepFigure<'_> {
             // Over the upper panels, the transitions' tags: the columns of
             // their lines from a chart laid out alike (nothing drawn), the
             // room for their rows kept above the plot.
-            let tags = if panel < 2 && !values.is_empty() {
+            let tags = if panel < top_row && !values.is_empty() {
                 let probe = builder(0).build_cartesian_2d(lo..hi, 0.0..1.0)?;
                 let columns: Vec<i32> = values
                     .iter()
@@ -569,8 +534,7 @@ impl SweepFigure<'_> {
                 .label_style((FAMILY, TICK_SIZE).into_font())
                 .axis_desc_style((FAMILY, AXIS_SIZE).into_font())
                 .draw()?;
-            if panel >= 2 {
-                let level = if panel == 2 { 1.0 } else { 0.0 };
+            if let Range::Eigenvalue { level, .. } = range {
                 chart.draw_series(DashedLineSeries::new(
                     vec![(lo, level), (hi, level)],
                     5,
@@ -592,13 +556,13 @@ impl SweepFigure<'_> {
                     match curve.stroke {
                         Stroke::Solid => {
                             chart.draw_series(LineSeries::new(
-                                curve.points.iter().copied(),
+                                curve.points.iter().map(|&(x, y)| (x, clamp(y))),
                                 c.stroke_width(STABLE_WIDTH),
                             ))?;
                         }
                         Stroke::Dashed => {
                             chart.draw_series(DashedLineSeries::new(
-                                curve.points.iter().copied(),
+                                curve.points.iter().map(|&(x, y)| (x, clamp(y))),
                                 6,
                                 4,
                                 c.stroke_width(UNSTABLE_WIDTH),
@@ -623,7 +587,7 @@ impl SweepFigure<'_> {
                             get(m)
                                 .into_iter()
                                 .filter(|y| y.is_finite())
-                                .map(|y| Circle::new((p.value, y), 2, style)),
+                                .map(|y| Circle::new((p.value, clamp(y)), 2, style)),
                         )?;
                     }
                 }
@@ -637,7 +601,7 @@ impl SweepFigure<'_> {
                 .iter()
                 .map(|&i| {
                     let b = &sweep.bifurcations[i];
-                    chart.backend_coord(&(b.value, MARKED[panel](b)))
+                    chart.backend_coord(&(b.value, clamp(marked(b))))
                 })
                 .collect();
             let mut taken: Vec<Rect> = centres.iter().map(|&c| Symbol::rect(c)).collect();
@@ -700,7 +664,7 @@ impl SweepFigure<'_> {
                         .pos(Pos::new(HPos::Center, VPos::Center)),
                 ))?;
             }
-            if panel < 2 {
+            if panel < top_row {
                 placed.push(
                     tags.into_iter()
                         .map(|t| Tag {

@@ -196,7 +196,7 @@ pub struct CurvesSettings {
     pub spread: usize,
     /// Sweep the box's four edges too: every curve that leaves the box
     /// crosses one. On by default: measured with
-    /// `bash benches/curves-runs.sh` and `EXTRA=--no-edges` (README,
+    /// `bash benches/curves-runs.sh` and `EXTRA=--no-edges` (the guide,
     /// "Regime maps"), it finds 29 curves on Shaw's box where 20 are found
     /// without, and 70 on Fig. 11's where 39 are, at three times the run
     /// time there.

@@ -346,7 +346,7 @@ fn progress_bar(show: bool, len: u64, done: u64) -> indicatif::ProgressBar {
 }
 
 /// Join map files of the same grid — shards, possibly partial, possibly
-/// with duplicate points — into the complete map `out`, byte-identical to a
+/// with duplicate points — into the complete map `out`, the same bytes as a
 /// single run of the whole grid. Every grid point must be present, and a
 /// point given twice must be given identically.
 pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<Summary, MapError> {

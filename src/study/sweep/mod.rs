@@ -23,10 +23,13 @@ use crate::bifurcation::branch::{Branch, EndReason};
 use crate::bifurcation::ContinuationOptions;
 use crate::model::param::{ParamError, ParamSet};
 use crate::model::Model;
+use crate::orbit::amplitude::{self, Amplitude};
 use crate::orbit::attractor::{AttractorOptions, NoMotion, PermanentStick};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::stability::Stability;
+use crate::orbit::steady::steady_response;
+use crate::orbit::structure::Structure;
 
 mod cascade;
 mod explore;
@@ -73,6 +76,11 @@ pub struct MotionSummary {
     pub eigenvalues: Vec<[f64; 2]>,
     /// Stable.
     pub stable: bool,
+    /// The largest `|x|` over the cycle (the amplitude, from the closed
+    /// form; NaN where it could not be evaluated).
+    pub max_abs_x: f64,
+    /// The largest `|v|` over the cycle.
+    pub max_abs_v: f64,
     /// For NM, the largest velocity of the steady response.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_v: Option<f64>,
@@ -141,6 +149,11 @@ pub struct BranchSample {
     pub eigenvalues: Vec<[f64; 2]>,
     /// Both eigenvalues inside the unit circle.
     pub stable: bool,
+    /// The largest `|x|` over the cycle (the amplitude, from the closed
+    /// form; NaN where it could not be evaluated).
+    pub max_abs_x: f64,
+    /// The largest `|v|` over the cycle.
+    pub max_abs_v: f64,
     /// Every switching point (phase mod 2π, x) — for the figures.
     #[serde(skip)]
     pub points: Vec<SwitchingPoint>,
@@ -205,6 +218,11 @@ pub struct BifurcationSummary {
     pub start_wt: f64,
     /// `x_0` of the motion there.
     pub start_x: f64,
+    /// The largest `|x|` over the cycle (the amplitude, from the closed
+    /// form; NaN where it could not be evaluated).
+    pub max_abs_x: f64,
+    /// The largest `|v|` over the cycle.
+    pub max_abs_v: f64,
 }
 
 impl Sweep {
@@ -298,10 +316,24 @@ fn with<P: ParamSet>(base: &P, index: usize, value: f64) -> Result<P, ParamError
     Ok(p)
 }
 
-fn summary<M: Model>(m: &Motion) -> MotionSummary {
+/// The amplitude of the motion of `structure` through `points` at `p`
+/// (NaN, NaN where it cannot be evaluated).
+fn amplitude_of<M: Model>(
+    p: &M::Params,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+) -> Amplitude {
+    amplitude::of_motion::<M>(p, structure, points).unwrap_or(Amplitude {
+        x: f64::NAN,
+        v: f64::NAN,
+    })
+}
+
+fn summary<M: Model>(m: &Motion, p: &M::Params) -> MotionSummary {
     let st = m
         .stability
         .unwrap_or_else(|| Stability::of(&nalgebra::Matrix2::zeros()));
+    let amp = amplitude_of::<M>(p, &m.structure, &m.points);
     MotionSummary {
         structure: m.structure.notation(M::INFO),
         n: m.structure.periods(),
@@ -309,6 +341,8 @@ fn summary<M: Model>(m: &Motion) -> MotionSummary {
         start_x: m.points[0].x,
         eigenvalues: st.eigenvalues.to_vec(),
         stable: st.is_stable(),
+        max_abs_x: amp.x,
+        max_abs_v: amp.v,
         max_v: None,
         points: m
             .points
@@ -321,7 +355,14 @@ fn summary<M: Model>(m: &Motion) -> MotionSummary {
     }
 }
 
-fn nm_summary(nm: &NoMotion) -> MotionSummary {
+fn nm_summary<M: Model>(nm: &NoMotion, p: &M::Params) -> MotionSummary {
+    let amp = steady_response::<M>(p, nm.domain).map_or(
+        Amplitude {
+            x: f64::NAN,
+            v: f64::NAN,
+        },
+        |s| Amplitude::of_steady(&s),
+    );
     MotionSummary {
         structure: "NM".into(),
         n: 1,
@@ -329,6 +370,8 @@ fn nm_summary(nm: &NoMotion) -> MotionSummary {
         start_x: f64::NAN,
         eigenvalues: vec![],
         stable: true,
+        max_abs_x: amp.x,
+        max_abs_v: amp.v,
         max_v: Some(nm.max_v),
         points: vec![],
     }
@@ -342,6 +385,8 @@ fn stick_summary(s: &PermanentStick) -> MotionSummary {
         start_x: s.x,
         eigenvalues: vec![],
         stable: true,
+        max_abs_x: s.x.abs(),
+        max_abs_v: s.v.abs(),
         max_v: None,
         points: vec![],
     }
@@ -363,13 +408,15 @@ impl MotionSummary {
     }
 }
 
-fn sample(value: f64, points: &[SwitchingPoint], st: &Stability) -> BranchSample {
+fn sample(value: f64, points: &[SwitchingPoint], st: &Stability, amp: Amplitude) -> BranchSample {
     BranchSample {
         value,
         start_wt: points[0].phase.rem_euclid(TAU),
         start_x: points[0].x,
         eigenvalues: st.eigenvalues.to_vec(),
         stable: st.is_stable(),
+        max_abs_x: amp.x,
+        max_abs_v: amp.v,
         points: points
             .iter()
             .map(|p| SwitchingPoint {
@@ -386,11 +433,23 @@ fn sample(value: f64, points: &[SwitchingPoint], st: &Stability) -> BranchSample
 /// the point after it for the first point of a branch born at a
 /// bifurcation), and a stretch of one stability then ends at the
 /// bifurcation.
-fn branch_samples(b: &Branch) -> Vec<BranchSample> {
+fn branch_samples<M: Model>(
+    b: &Branch,
+    at: &impl Fn(f64) -> Option<M::Params>,
+) -> Vec<BranchSample> {
     let mut out: Vec<BranchSample> = b
         .points
         .iter()
-        .map(|q| sample(q.value, &q.points, &q.stability))
+        .map(|q| {
+            let amp = at(q.value).map_or(
+                Amplitude {
+                    x: f64::NAN,
+                    v: f64::NAN,
+                },
+                |p| amplitude_of::<M>(&p, &b.structure, &q.points),
+            );
+            sample(q.value, &q.points, &q.stability, amp)
+        })
         .collect();
     let mut critical: Vec<usize> = b.bifurcations.iter().map(|f| f.index).collect();
     critical.sort_unstable();
@@ -406,12 +465,16 @@ fn branch_samples(b: &Branch) -> Vec<BranchSample> {
     out
 }
 
-fn branch_summary<M: Model>(id: usize, b: &Branch) -> BranchSummary {
+fn branch_summary<M: Model>(
+    id: usize,
+    b: &Branch,
+    at: &impl Fn(f64) -> Option<M::Params>,
+) -> BranchSummary {
     BranchSummary {
         id,
         structure: b.structure.notation(M::INFO),
         n: b.structure.periods(),
-        points: branch_samples(b),
+        points: branch_samples::<M>(b, at),
         ends: b
             .ends
             .iter()
@@ -514,20 +577,31 @@ fn sweep_grid<M: Model>(
     explorer.seed(&values);
     let nm = rest::regimes::<M>(&base, index, &values, &opts, &mut explorer);
     explorer.search_all();
+    // The parameters at a value of the swept one (for the amplitudes).
+    let at = |value: f64| with(&base, index, value).ok();
+    let nan = Amplitude {
+        x: f64::NAN,
+        v: f64::NAN,
+    };
 
     let points = values
         .iter()
         .zip(&nm)
         .map(|(&value, nm)| {
             let mut motions: Vec<MotionSummary> = Vec::new();
+            let p = at(value);
             for (_, m) in explorer.motions_at(value) {
-                let s = summary::<M>(&m);
+                let s = match &p {
+                    Some(p) => summary::<M>(&m, p),
+                    None => continue,
+                };
                 if !motions.iter().any(|x| x.same_as(&s)) {
                     motions.push(s);
                 }
             }
             for n in nm {
-                let s = nm_summary(n);
+                let Some(p) = &p else { continue };
+                let s = nm_summary::<M>(n, p);
                 if !motions.iter().any(|x| x.same_as(&s)) {
                     motions.push(s);
                 }
@@ -544,7 +618,7 @@ fn sweep_grid<M: Model>(
         .branches
         .iter()
         .enumerate()
-        .map(|(id, b)| branch_summary::<M>(id, b))
+        .map(|(id, b)| branch_summary::<M>(id, b, &at))
         .collect();
     let mut bifurcations: Vec<BifurcationSummary> = explorer
         .bifurcations
@@ -552,6 +626,8 @@ fn sweep_grid<M: Model>(
         .map(|l| {
             let b = &explorer.branches[l.branch];
             let bif = &b.bifurcations[l.which];
+            let amp = at(bif.at.value)
+                .map_or(nan, |p| amplitude_of::<M>(&p, &b.structure, &bif.at.points));
             BifurcationSummary {
                 value: bif.at.value,
                 kind: bif.kind,
@@ -562,6 +638,8 @@ fn sweep_grid<M: Model>(
                 born: l.born.clone(),
                 start_wt: bif.at.points[0].phase.rem_euclid(TAU),
                 start_x: bif.at.points[0].x,
+                max_abs_x: amp.x,
+                max_abs_v: amp.v,
             }
         })
         .collect();
