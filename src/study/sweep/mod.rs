@@ -658,8 +658,22 @@ fn sweep_grid<M: Model>(
     cuts.sort_by(|a, b| a.value.total_cmp(&b.value));
     let mut transitions = explorer.transitions;
     transitions.sort_by(|a, b| a.value.total_cmp(&b.value));
-    transitions
-        .dedup_by(|a, b| (a.value - b.value).abs() < 1e-8 && a.kind == b.kind && a.from == b.from);
+    // One transition found from both sides (or from two branches) is listed
+    // once, whatever else lies at the same value: mirror-image motions put
+    // theirs there too, so equal transitions need not be adjacent.
+    let mut unique: Vec<Transition> = Vec::with_capacity(transitions.len());
+    for t in transitions {
+        let seen = unique.iter().any(|u| {
+            (u.value - t.value).abs() < 1e-8 * t.value.abs().max(1.0)
+                && u.kind == t.kind
+                && u.from == t.from
+                && u.boundary == t.boundary
+        });
+        if !seen {
+            unique.push(t);
+        }
+    }
+    let transitions = unique;
     Ok((
         Sweep {
             param: name.to_string(),
