@@ -150,6 +150,6 @@ fn a_grazing_curve_of_a_strongly_expanding_motion_ends_where_its_stick_vanishes(
         ends(graze),
         ends(vanish)
     );
-    let bad = other_ends::<Stribeck8>(&curves);
+    let bad = other_ends(Stribeck8::INFO, &curves);
     assert!(bad.is_empty(), "{bad:#?}");
 }

@@ -107,7 +107,7 @@ fn the_curve_is_traced_and_ends_at_the_box_or_a_codim2_point() {
         c.points.len()
     );
     assert_eq!(c.ends.len(), 2, "a closed curve?");
-    let other = other_ends::<Coulomb>(std::slice::from_ref(c));
+    let other = other_ends(Coulomb::INFO, std::slice::from_ref(c));
     assert!(other.is_empty(), "{other:?}");
     // It spans the box's height range it crosses, not a stub.
     let (lo, hi) = c

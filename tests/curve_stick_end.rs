@@ -349,7 +349,7 @@ fn the_curves_run_starts_the_stick_end_curve() {
         .map(|m| m.margin.abs())
         .fold(f64::INFINITY, f64::min);
     assert!(onset < 1e-6, "stick-onset margin {onset:e} at the end");
-    let other = common::cycle::other_ends::<Paper>(&curves);
+    let other = common::cycle::other_ends(Paper::INFO, &curves);
     assert!(other.is_empty(), "{other:#?}");
 }
 

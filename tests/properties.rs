@@ -77,7 +77,7 @@ fn resimulate(sim: &Simulator<Paper>, motion: &Motion) -> Result<(f64, f64), Str
         after: seg.location,
     };
     for (k, e) in events.iter().enumerate() {
-        let got = mapping_between::<Paper>(&prev, e);
+        let got = mapping_between(Paper::INFO, &prev, e);
         if got != Some(steps[k]) {
             return Err(format!(
                 "segment {k} follows {:?}, the structure says {}",

@@ -93,7 +93,7 @@ fn simulation_from_a_newton_solution_returns_to_it() {
         let mut prev = start_event(steps[0], &seg);
         for (k, e) in events.iter().enumerate() {
             // (a) the segment that ends at event k follows mapping k.
-            let got = mapping_between::<Paper>(&prev, e);
+            let got = mapping_between(Paper::INFO, &prev, e);
             assert_eq!(
                 got,
                 Some(steps[k]),

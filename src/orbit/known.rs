@@ -162,7 +162,7 @@ impl KnownMotions {
     ) {
         let states = stroboscopic_states(sim, motion, self.phase0);
         let w = self.frequency;
-        let info = M::INFO;
+        let info = sim.info();
         let mut extent = [
             f64::INFINITY,
             f64::NEG_INFINITY,

@@ -13,7 +13,7 @@
 use rayon::prelude::*;
 
 use crate::dynamics::simulate::Simulator;
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 use crate::orbit::known::{settle, KnownMotions, Settled};
 use crate::orbit::lyapunov::{spectrum, LyapunovOptions, Verdict};
@@ -85,7 +85,7 @@ pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
             continue;
         };
         let stable = m.stability.is_some_and(|s| s.is_stable()) && m.is_admissible();
-        let label = motion_label::<M>(&m);
+        let label = motion_label(sim.info(), &m);
         if stable && !known.labels.contains(&label) {
             known.motions.insert(sim, known.labels.len(), &m);
             known.labels.push(label);
@@ -95,9 +95,9 @@ pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
 }
 
 /// The label of an attractor found by a full search.
-pub fn attractor_label<M: Model>(a: &Attractor) -> String {
+pub fn attractor_label(info: &ModelInfo, a: &Attractor) -> String {
     match a {
-        Attractor::Periodic(m) => motion_label::<M>(m),
+        Attractor::Periodic(m) => motion_label(info, m),
         Attractor::NoMotion(_) => NO_MOTION.to_string(),
         Attractor::Stick(_) => STICK.to_string(),
         Attractor::Autonomous(_) => "autonomous cycle".to_string(),
@@ -118,7 +118,7 @@ pub fn classify<M: Model>(
             let settling = settle(sim, &known.motions, seg, attractor_options(header.periods));
             match settling.outcome {
                 Ok(Settled::Known(id)) => (known.labels[id].clone(), None),
-                Ok(Settled::Attractor(a)) => (attractor_label::<M>(&a), None),
+                Ok(Settled::Attractor(a)) => (attractor_label(sim.info(), &a), None),
                 Err(OrbitError::Unsettled { .. }) => irregular(sim, header, (x, v)),
                 Err(OrbitError::Inadmissible(_)) => ("inadmissible".to_string(), None),
                 Err(OrbitError::NotConverged(_)) => ("not_converged".to_string(), None),

@@ -186,14 +186,16 @@ impl MapHeader {
         method: MapMethod,
         shard: Option<Shard>,
     ) -> Self {
-        let base = M::Params::NAMES
+        let names = base.names();
+        let model = M::info(base).name.to_string();
+        let base = names
             .iter()
             .enumerate()
             .filter(|(_, n)| **n != x.name && **n != y.name)
             .map(|(i, n)| (n.to_string(), base.get(i)))
             .collect();
         Self {
-            model: M::INFO.name.to_string(),
+            model,
             x: x.clone(),
             y: y.clone(),
             base,

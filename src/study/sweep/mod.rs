@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::bifurcation::branch::{Branch, EndReason};
 use crate::bifurcation::ContinuationOptions;
 use crate::model::param::{ParamError, ParamSet};
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::attractor::{AttractorOptions, NoMotion, PermanentStick};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::SwitchingPoint;
@@ -269,12 +269,12 @@ fn with<P: ParamSet>(base: &P, index: usize, value: f64) -> Result<P, ParamError
     Ok(p)
 }
 
-fn summary<M: Model>(m: &Motion) -> MotionSummary {
+fn summary(info: &ModelInfo, m: &Motion) -> MotionSummary {
     let st = m
         .stability
         .unwrap_or_else(|| Stability::of(&nalgebra::Matrix2::zeros()));
     MotionSummary {
-        structure: m.structure.notation(M::INFO),
+        structure: m.structure.notation(info),
         n: m.structure.periods(),
         start_wt: m.points[0].phase.rem_euclid(TAU),
         start_x: m.points[0].x,
@@ -377,10 +377,10 @@ fn branch_samples(b: &Branch) -> Vec<BranchSample> {
     out
 }
 
-fn branch_summary<M: Model>(id: usize, b: &Branch) -> BranchSummary {
+fn branch_summary(info: &ModelInfo, id: usize, b: &Branch) -> BranchSummary {
     BranchSummary {
         id,
-        structure: b.structure.notation(M::INFO),
+        structure: b.structure.notation(info),
         n: b.structure.periods(),
         points: branch_samples(b),
         ends: b
@@ -394,7 +394,7 @@ fn branch_summary<M: Model>(id: usize, b: &Branch) -> BranchSummary {
                 let boundary = match e.reason {
                     EndReason::Transition {
                         boundary: Some(k), ..
-                    } => Some(M::INFO.boundaries[k].label.to_string()),
+                    } => Some(info.boundaries[k].label.to_string()),
                     _ => None,
                 };
                 BranchEndSummary {
@@ -450,7 +450,7 @@ pub(crate) fn sweep_branches<M: Model>(
     count: usize,
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
-    <M::Params as ParamSet>::index_of(name)
+    base.index_of(name)
         .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
     if count < 2 || !from.is_finite() || !to.is_finite() || from >= to {
         return Err(SweepError::Range(format!(
@@ -470,7 +470,8 @@ fn sweep_grid<M: Model>(
     values: Vec<f64>,
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
-    let index = <M::Params as ParamSet>::index_of(name)
+    let index = base
+        .index_of(name)
         .ok_or_else(|| SweepError::UnknownParam(name.to_string()))?;
     if opts.max_mappings == Some(0) {
         return Err(SweepError::Options(
@@ -492,7 +493,7 @@ fn sweep_grid<M: Model>(
         .map(|(&value, nm)| {
             let mut motions: Vec<MotionSummary> = Vec::new();
             for (_, m) in explorer.motions_at(value) {
-                let s = summary::<M>(&m);
+                let s = summary(M::info(&base), &m);
                 if !motions.iter().any(|x| x.same_as(&s)) {
                     motions.push(s);
                 }
@@ -515,7 +516,7 @@ fn sweep_grid<M: Model>(
         .branches
         .iter()
         .enumerate()
-        .map(|(id, b)| branch_summary::<M>(id, b))
+        .map(|(id, b)| branch_summary(M::info(&base), id, b))
         .collect();
     let mut bifurcations: Vec<BifurcationSummary> = explorer
         .bifurcations
@@ -526,7 +527,7 @@ fn sweep_grid<M: Model>(
             BifurcationSummary {
                 value: bif.at.value,
                 kind: bif.kind,
-                structure: b.structure.notation(M::INFO),
+                structure: b.structure.notation(M::info(&base)),
                 n: b.structure.periods(),
                 eigenvalue: bif.eigenvalue,
                 branch: l.branch,
