@@ -43,7 +43,6 @@ use stickslip::models::coulomb::Coulomb;
 use stickslip::orbit::periodic::{monodromy, NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::Model;
 
 const MOTION: &str = "P_{0_11 1_11 0_11 2_11}";
 

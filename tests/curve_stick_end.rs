@@ -29,7 +29,7 @@ use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
+use stickslip::Model;
 
 const STRUCTURE: &str = "P_{3_31 0_11 1_11 3_13 4_33}";
 

@@ -104,7 +104,10 @@ fn compare<M: Model>(base: M::Params, loaded: LoadedParams, seed: u64, points: u
     assert_eq!(ia.structures, ib.structures, "{name}");
     assert_eq!(format!("{:?}", ia.params), format!("{:?}", ib.params));
     assert_eq!(format!("{:?}", ia.domains), format!("{:?}", ib.domains));
-    assert_eq!(format!("{:?}", ia.boundaries), format!("{:?}", ib.boundaries));
+    assert_eq!(
+        format!("{:?}", ia.boundaries),
+        format!("{:?}", ib.boundaries)
+    );
     assert_eq!(format!("{:?}", ia.mappings), format!("{:?}", ib.mappings));
     assert_eq!(ia.source_hash, None);
     assert!(ib.source_hash.is_some());
@@ -125,19 +128,33 @@ fn compare<M: Model>(base: M::Params, loaded: LoadedParams, seed: u64, points: u
         }
         admissible += 1;
         let at = |what: &str| format!("{name} {what} at {pa:?}");
-        let osc = |o: stickslip::Oscillator| {
-            [o.mass, o.damping, o.stiffness, o.amplitude, o.frequency]
-        };
-        w.same(|| at("oscillator"), &osc(M::oscillator(&pa)), &osc(Loaded::oscillator(&pb)));
+        let osc =
+            |o: stickslip::Oscillator| [o.mass, o.damping, o.stiffness, o.amplitude, o.frequency];
+        w.same(
+            || at("oscillator"),
+            &osc(M::oscillator(&pa)),
+            &osc(Loaded::oscillator(&pb)),
+        );
         let bound = |s: Option<f64>| [s.unwrap_or(-1.0)];
-        w.same(|| at("as"), &bound(M::static_bound(&pa)), &bound(Loaded::static_bound(&pb)));
+        w.same(
+            || at("as"),
+            &bound(M::static_bound(&pa)),
+            &bound(Loaded::static_bound(&pb)),
+        );
         for k in 0..ia.boundaries.len() {
-            let (a, b) = (M::boundary_velocity(&pa, k), Loaded::boundary_velocity(&pb, k));
+            let (a, b) = (
+                M::boundary_velocity(&pa, k),
+                Loaded::boundary_velocity(&pb, k),
+            );
             w.same(|| at(&format!("V{k}")), &[a], &[b]);
         }
         for j in 0..ia.domains.len() {
             let (a, b) = (M::coefficients(&pa, j), Loaded::coefficients(&pb, j));
-            w.same(|| at(&format!("coefficients {j}")), &[a.two_d, a.c, a.b], &[b.two_d, b.c, b.b]);
+            w.same(
+                || at(&format!("coefficients {j}")),
+                &[a.two_d, a.c, a.b],
+                &[b.two_d, b.c, b.b],
+            );
         }
         let w_forcing = M::oscillator(&pa).frequency;
         for _ in 0..6 {
@@ -221,13 +238,31 @@ impl ModelVisitor for Smooth {
             if checked.is_err() {
                 continue;
             }
-            let o = |o: stickslip::Oscillator| [o.mass, o.damping, o.stiffness, o.amplitude, o.frequency];
-            w.same(|| format!("{name} oscillator"), &o(S::oscillator(&pa)), &o(LoadedSmooth::oscillator(&pb)));
-            w.same(|| format!("{name} V"), &[S::belt(&pa)], &[LoadedSmooth::belt(&pb)]);
-            w.same(|| format!("{name} as"), &[S::static_bound(&pa)], &[LoadedSmooth::static_bound(&pb)]);
+            let o = |o: stickslip::Oscillator| {
+                [o.mass, o.damping, o.stiffness, o.amplitude, o.frequency]
+            };
+            w.same(
+                || format!("{name} oscillator"),
+                &o(S::oscillator(&pa)),
+                &o(LoadedSmooth::oscillator(&pb)),
+            );
+            w.same(
+                || format!("{name} V"),
+                &[S::belt(&pa)],
+                &[LoadedSmooth::belt(&pb)],
+            );
+            w.same(
+                || format!("{name} as"),
+                &[S::static_bound(&pa)],
+                &[LoadedSmooth::static_bound(&pb)],
+            );
             for _ in 0..20 {
                 let v = S::belt(&pa) + rng.gen_range(-6.0..6.0);
-                w.same(|| format!("{name} law at {v}"), &S::kinetic(&pa, v), &LoadedSmooth::kinetic(&pb, v));
+                w.same(
+                    || format!("{name} law at {v}"),
+                    &S::kinetic(&pa, v),
+                    &LoadedSmooth::kinetic(&pb, v),
+                );
             }
         }
         Some(w)

@@ -152,7 +152,8 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
 fn classify_point_names_reference_motions_no_motion_and_invalid_parameters() {
     let one = |w: f64, q0: f64| {
         let x = GridAxis::parse_for::<Paper>(&Default::default(), &format!("W={w}:{w}:1")).unwrap();
-        let y = GridAxis::parse_for::<Paper>(&Default::default(), &format!("Q0={q0}:{q0}:1")).unwrap();
+        let y =
+            GridAxis::parse_for::<Paper>(&Default::default(), &format!("Q0={q0}:{q0}:1")).unwrap();
         classify_point::<Paper>(&Params::default(), &x, &y, 0)
     };
     let p = one(3.7, 70.0);

@@ -28,7 +28,6 @@ use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::NewtonOptions;
 use stickslip::orbit::structure::Structure;
 use stickslip::study::map::{run_map, GridAxis, MapFile, MapMethod, MapOptions};
-use stickslip::Model;
 
 fn grid() -> usize {
     std::env::var("STICKSLIP_CHECK_GRID")

@@ -23,7 +23,6 @@ use stickslip::model::param::{ParamError, ParamSet};
 use stickslip::models::paper::{self, Paper, Params};
 use stickslip::orbit::attractor::{self, mapping_between, Attractor, AttractorOptions};
 use stickslip::orbit::motion::{Motion, OrbitError};
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

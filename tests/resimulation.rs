@@ -17,7 +17,6 @@ use stickslip::models::paper::Paper;
 use stickslip::orbit::attractor::mapping_between;
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const TOL: f64 = 1e-10;

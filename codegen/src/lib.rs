@@ -113,7 +113,11 @@ pub trait Backend {
     /// What it makes.
     type Output;
     /// Make it from the checked `model` and its equations.
-    fn emit(self, model: &Model, generation: equations::Generation) -> Result<Self::Output, Diagnostics>;
+    fn emit(
+        self,
+        model: &Model,
+        generation: equations::Generation,
+    ) -> Result<Self::Output, Diagnostics>;
 }
 
 /// The build-time back end: formatted Rust source ([`emit`]).
@@ -123,7 +127,11 @@ pub(crate) struct RustSource<'a>(pub &'a Options);
 #[cfg(feature = "generator")]
 impl Backend for RustSource<'_> {
     type Output = GeneratedFile;
-    fn emit(self, model: &Model, generation: equations::Generation) -> Result<GeneratedFile, Diagnostics> {
+    fn emit(
+        self,
+        model: &Model,
+        generation: equations::Generation,
+    ) -> Result<GeneratedFile, Diagnostics> {
         let tokens = emit::emit(&generation);
         let code = emit::header(&generation.header, self.0) + &format(tokens)?;
         Ok(GeneratedFile {

@@ -231,7 +231,9 @@ fn check_text(source: &str, origin: &str, file: Option<&str>) -> Result<Generate
     let options = Options {
         origin: origin.to_string(),
     };
-    run_text(source, origin, |tokens| generate_named(tokens, &options, file))
+    run_text(source, origin, |tokens| {
+        generate_named(tokens, &options, file)
+    })
 }
 
 /// `source` through the generator (`make`: the pipeline with a back end)

@@ -8,7 +8,7 @@ use stickslip::models as catalogue;
 use stickslip::output::describe::describe as description;
 use stickslip::{Bound, Model};
 
-use crate::command::{ModelSpec, params as checked, with_model, Command};
+use crate::command::{params as checked, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 /// The names of the compiled-in piecewise-linear models and scenes.

@@ -8,7 +8,7 @@ use stickslip::study::diagram::{
 };
 use stickslip::Model;
 
-use crate::command::{ModelSpec, params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 struct Diagram {

@@ -16,7 +16,7 @@ use stickslip::output::report::Report;
 use stickslip::output::settled::{settle, Settled, Window};
 use stickslip::Model;
 
-use crate::command::{ModelSpec, params, settings, with_model, Command};
+use crate::command::{params, settings, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 /// The columns of a history: `t, Wt, x, v, a, F, domain` (domain 0: stick).

@@ -7,8 +7,8 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use stickslip::output::figure::Format;
 use stickslip::models::ModelRef;
+use stickslip::output::figure::Format;
 use stickslip::{Model, ModelVisitor, ParamSet};
 
 use super::error::CliError;
@@ -203,9 +203,9 @@ impl<C: WithModel> ModelVisitor for Piecewise<C> {
 pub fn with_model<C: WithModel>(model: &ModelRef, command: C) -> Result<C::Output, CliError> {
     model.visit(Piecewise(command))?.unwrap_or_else(|| {
         Err(match model {
-            ModelRef::Name(name) => CliError::UnknownModel(stickslip::models::UnknownModel {
-                name: name.clone(),
-            }),
+            ModelRef::Name(name) => {
+                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
+            }
             _ => CliError::SmoothFile {
                 model: model.to_string(),
             },

@@ -11,7 +11,7 @@ use stickslip::study::basins::{run_basins, BasinOptions, BasinSettings, Basins};
 use stickslip::study::map::GridAxis;
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, with_model, Assignments, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

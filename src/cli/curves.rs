@@ -10,7 +10,7 @@ use stickslip::output::figure::regime::plot_regimes;
 use stickslip::study::curves::{curves_with, regions, CurvesOptions, CurvesSettings};
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, with_model, Assignments, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

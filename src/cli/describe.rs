@@ -4,7 +4,7 @@ use clap::Args;
 use stickslip::output::describe::describe;
 use stickslip::Model;
 
-use super::args::{ModelArgs, with_model, Assignments, WithModel};
+use super::args::{with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

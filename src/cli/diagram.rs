@@ -11,7 +11,7 @@ use stickslip::study::diagram::{
 };
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, with_model, Assignments, ParamRange, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, ParamRange, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

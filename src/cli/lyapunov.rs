@@ -7,7 +7,7 @@ use stickslip::orbit::lyapunov::{spectrum, LyapunovError, LyapunovOptions};
 use stickslip::output::lyapunov_report::LyapunovReport;
 use stickslip::Model;
 
-use super::args::{ModelArgs, parse_numbers, with_model, Assignments, WithModel};
+use super::args::{parse_numbers, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

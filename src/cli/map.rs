@@ -10,7 +10,7 @@ use stickslip::study::curves::{curves, CurvesOptions};
 use stickslip::study::map::{run_map, GridAxis, MapFile, MapMethod, MapOptions, Shard};
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, with_model, Assignments, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

@@ -12,7 +12,9 @@ use stickslip::output::history::History;
 use stickslip::output::report::Report;
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
+use super::args::{
+    check_plot_path, parse_numbers, with_model, Assignments, ModelArgs, OutputArgs, WithModel,
+};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 

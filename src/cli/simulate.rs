@@ -8,7 +8,9 @@ use stickslip::orbit::attractor::AttractorOptions;
 use stickslip::output::settled::settle;
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
+use super::args::{
+    check_plot_path, parse_numbers, with_model, Assignments, ModelArgs, OutputArgs, WithModel,
+};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 

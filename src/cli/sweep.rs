@@ -9,7 +9,7 @@ use stickslip::output::sweep_table;
 use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
 
-use super::args::{ModelArgs, check_plot_path, with_model, Assignments, ParamRange, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, ParamRange, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 

@@ -9,7 +9,7 @@ use stickslip::output::figure::trade::plot_trade;
 use stickslip::output::text::trade_table;
 use stickslip::study::trade::Measure;
 
-use super::args::{ModelArgs, check_plot_path, Assignments};
+use super::args::{check_plot_path, Assignments, ModelArgs};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -52,14 +52,12 @@ pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
         tols: &args.tol,
         reference_tol: args.reference_tol,
     };
-    let trade = model
-        .visit(measure)?
-        .ok_or_else(|| match &model {
-            ModelRef::Name(name) => CliError::NotSmooth { name: name.clone() },
-            _ => CliError::NotSmoothFile {
-                model: model.to_string(),
-            },
-        })??;
+    let trade = model.visit(measure)?.ok_or_else(|| match &model {
+        ModelRef::Name(name) => CliError::NotSmooth { name: name.clone() },
+        _ => CliError::NotSmoothFile {
+            model: model.to_string(),
+        },
+    })??;
     if let Some(path) = &args.plot {
         plot_trade(&trade, path).map_err(CliError::Figure)?;
     }

@@ -52,7 +52,9 @@ pub fn monodromy<M: Model>(
     shift: f64,
     points: &[SwitchingPoint],
 ) -> Result<Matrix2<f64>, usize> {
-    chain(M::info(p), steps, 0, |k| evaluate::<M>(p, steps, shift, points, k))
+    chain(M::info(p), steps, 0, |k| {
+        evaluate::<M>(p, steps, shift, points, k)
+    })
 }
 
 /// [`monodromy`] of the cycle taken from its first mapping that is not a
@@ -69,7 +71,9 @@ pub fn monodromy_spectral<M: Model>(
 ) -> Result<Matrix2<f64>, usize> {
     let info = M::info(p);
     let start = steps.iter().position(|&s| !is_stick(info, s)).unwrap_or(0);
-    chain(info, steps, start, |k| evaluate::<M>(p, steps, shift, points, k))
+    chain(info, steps, start, |k| {
+        evaluate::<M>(p, steps, shift, points, k)
+    })
 }
 
 fn evaluate<M: Model>(

@@ -312,9 +312,10 @@ impl Build {
         args: usize,
         outputs: &[Id],
     ) -> Result<usize, Diagnostics> {
-        let (ctx, fctx) = self.ctx.take().unwrap_or_else(|| {
-            (self.module.make_context(), FunctionBuilderContext::new())
-        });
+        let (ctx, fctx) = self
+            .ctx
+            .take()
+            .unwrap_or_else(|| (self.module.make_context(), FunctionBuilderContext::new()));
         let mut compiler = Compiler {
             module: &mut self.module,
             imports: &self.imports,
@@ -344,7 +345,11 @@ const FLOW: [(u32, Slot); 4] = [
     (2, Slot::Plain(2)),
     (3, Slot::Plain(3)),
 ];
-const FIELD: [(u32, Slot); 3] = [(0, Slot::Plain(0)), (1, Slot::Plain(1)), (2, Slot::Plain(2))];
+const FIELD: [(u32, Slot); 3] = [
+    (0, Slot::Plain(0)),
+    (1, Slot::Plain(1)),
+    (2, Slot::Plain(2)),
+];
 const MAPPING: [(u32, Slot); 4] = [
     (0, Slot::Plain(0)),
     (1, Slot::Phase(1)),
@@ -364,7 +369,10 @@ fn ids<const A: usize, const O: usize>(
         .collect()
 }
 
-fn one<const A: usize, const O: usize>(machine: &Machine, i: usize) -> Result<FnId<A, O>, Diagnostics> {
+fn one<const A: usize, const O: usize>(
+    machine: &Machine,
+    i: usize,
+) -> Result<FnId<A, O>, Diagnostics> {
     machine.id(i).ok_or_else(|| internal("a function's arity"))
 }
 
@@ -374,9 +382,8 @@ impl Jit<'_> {
         too_many(&inst.params, &inst.free)?;
         let g = &inst.lowered.graph;
         let mut b = Build::new(self.routines)?;
-        let defined = |b: &mut Build, vars: &[(u32, Slot)], args, outs: &[Id]| {
-            b.define(g, vars, args, outs)
-        };
+        let defined =
+            |b: &mut Build, vars: &[(u32, Slot)], args, outs: &[Id]| b.define(g, vars, args, outs);
         let mut coefficients = Vec::new();
         let mut flows = Vec::new();
         let mut fields = Vec::new();

@@ -83,9 +83,8 @@ impl Imports {
         // C calling convention returns in two float registers: two results.
         let three = float_signature(module, 3, 2);
         let two = float_signature(module, 2, 2);
-        let mut import = |name: &str, sig: &Signature| {
-            module.declare_function(name, Linkage::Import, sig)
-        };
+        let mut import =
+            |name: &str, sig: &Signature| module.declare_function(name, Linkage::Import, sig);
         Ok(Self {
             sin: import(symbol::SIN, &unary)?,
             cos: import(symbol::COS, &unary)?,
@@ -124,9 +123,7 @@ impl Compiler<'_> {
         let name = format!("f{}", self.count);
         self.count += 1;
         let sig = signature(self.module);
-        let id = self
-            .module
-            .declare_function(&name, Linkage::Local, &sig)?;
+        let id = self.module.declare_function(&name, Linkage::Local, &sig)?;
         self.ctx.func.signature = sig;
         {
             let mut b = FunctionBuilder::new(&mut self.ctx.func, &mut self.fctx);
@@ -187,7 +184,9 @@ impl Walk<'_, '_> {
         }
         for (k, &o) in outputs.iter().enumerate() {
             let v = self.values[&o];
-            self.b.ins().store(MemFlags::trusted(), v, out, (8 * k) as i32);
+            self.b
+                .ins()
+                .store(MemFlags::trusted(), v, out, (8 * k) as i32);
         }
     }
 
@@ -234,11 +233,10 @@ impl Walk<'_, '_> {
         let v = |w: &Self, c: Id| w.values[&c];
         match g.node(id) {
             Node::Const(bits) => self.b.ins().f64const(Ieee64::with_bits(bits)),
-            Node::Param(k) => {
-                self.b
-                    .ins()
-                    .load(types::F64, reads(), self.params, (8 * k) as i32)
-            }
+            Node::Param(k) => self
+                .b
+                .ins()
+                .load(types::F64, reads(), self.params, (8 * k) as i32),
             Node::Var(k) => match self.slot(k) {
                 Some(Slot::Plain(s) | Slot::Phase(s)) => self.arg(s),
                 // A variable the function does not take (none is reached).

@@ -13,7 +13,7 @@ use stickslip::study::map::GridAxis;
 use stickslip::Model;
 
 use super::axis;
-use crate::command::{ModelSpec, params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 use crate::progress::with_progress;
 

@@ -5,7 +5,7 @@ use stickslip::output::curves_table;
 use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
 use stickslip::Model;
 
-use crate::command::{ModelSpec, params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::Failure;
 
 /// A side of the box as Python gives it: `(name, from, to)`.

@@ -7,7 +7,7 @@ use stickslip::orbit::lyapunov::{spectrum, LyapunovOptions};
 use stickslip::output::lyapunov_report::LyapunovReport;
 use stickslip::Model;
 
-use crate::command::{ModelSpec, params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::Failure;
 
 struct Lyapunov {

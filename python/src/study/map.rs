@@ -11,7 +11,7 @@ use stickslip::study::map::{run_map_counting, GridAxis, MapFile, MapMethod, MapO
 use stickslip::Model;
 
 use super::axis;
-use crate::command::{ModelSpec, params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 use crate::progress::with_progress;
 

@@ -12,7 +12,7 @@ use stickslip::study::map::{AxisError, GridAxis};
 use stickslip::study::sweep::{sweep_values, SweepOptions};
 use stickslip::Model;
 
-use crate::command::{ModelSpec, params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::Failure;
 
 /// Add this module's functions.

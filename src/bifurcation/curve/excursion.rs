@@ -274,7 +274,8 @@ pub fn reduced_start<M: Model>(
         }
     })?;
     let d = m / turns;
-    let structure = Structure::from_indices(M::info(base), &reduced[..d], periods / turns as u32).ok()?;
+    let structure =
+        Structure::from_indices(M::info(base), &reduced[..d], periods / turns as u32).ok()?;
     let mut y_t = y[..2 * d].to_vec();
     y_t.extend_from_slice(&y[n - 2..]);
     Some(ReducedStart {
@@ -323,9 +324,14 @@ impl<M: Model> Tracer<'_, M> {
     /// motion holding to [`SAME_EVENT`]. Returned in the curve's unknowns,
     /// the excursion's two switching points at the graze.
     pub(super) fn excursion_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
-        excursions(self.sys.eval.sim.info(), &self.sys.eval.steps, self.sys.eval.shift, &prev.x)
-            .into_iter()
-            .find_map(|e| self.reduced_point(prev, bound, &e))
+        excursions(
+            self.sys.eval.sim.info(),
+            &self.sys.eval.steps,
+            self.sys.eval.shift,
+            &prev.x,
+        )
+        .into_iter()
+        .find_map(|e| self.reduced_point(prev, bound, &e))
     }
 
     /// [`Self::excursion_point`] for the excursion `e`.
@@ -356,7 +362,8 @@ impl<M: Model> Tracer<'_, M> {
         y.extend([prev.x[n - 2], prev.x[n - 1]]);
         // The merged segment touches the boundary.
         let touch = e.touch(0);
-        let structure = Structure::from_indices(self.sys.eval.sim.info(), &reduced_steps, periods).ok()?;
+        let structure =
+            Structure::from_indices(self.sys.eval.sim.info(), &reduced_steps, periods).ok()?;
         let y = match self.solve_on(prev, bound, &structure, y.clone(), own, touch) {
             Some(y) => y,
             // A reduced motion of two equal halves, `T T`: where the motion
@@ -371,7 +378,8 @@ impl<M: Model> Tracer<'_, M> {
                 if half == 0 || first != second || periods % 2 != 0 {
                     return None;
                 }
-                let t = Structure::from_indices(self.sys.eval.sim.info(), first, periods / 2).ok()?;
+                let t =
+                    Structure::from_indices(self.sys.eval.sim.info(), first, periods / 2).ok()?;
                 let mut z: Vec<f64> = y[..2 * half].to_vec();
                 z.extend_from_slice(&y[y.len() - 2..]);
                 let pd = Condition::Eigen(TransitionKind::PeriodDoubling);

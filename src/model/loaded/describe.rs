@@ -9,8 +9,7 @@ use stickslip_codegen::model::MappingKind as BuildKind;
 use stickslip_codegen::parse::BoundOp;
 
 use crate::model::info::{
-    Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo,
-    Side,
+    Bound, BoundaryInfo, DomainInfo, Identity, MappingInfo, MappingKind, ModelInfo, ParamInfo, Side,
 };
 use crate::model::oscillator::Regime;
 use crate::model::smooth::SmoothInfo;
@@ -150,5 +149,11 @@ pub(super) fn smooth(s: &Smooth, source_hash: u64) -> &'static SmoothInfo {
 
 /// The names of the free parameters, in order (the `Params` fields).
 pub(super) fn names(identity: &Identity) -> &'static [&'static str] {
-    leak(identity.free.iter().map(|&i| identity.params[i].name).collect())
+    leak(
+        identity
+            .free
+            .iter()
+            .map(|&i| identity.params[i].name)
+            .collect(),
+    )
 }

@@ -63,7 +63,11 @@ pub fn load_file(path: &Path, scene: Option<&str>) -> Result<LoadedModel, LoadEr
 
 /// Load a model from its text (its scene `scene`, if given); `origin` names
 /// it in messages.
-pub fn load_source(text: &str, origin: &str, scene: Option<&str>) -> Result<LoadedModel, LoadError> {
+pub fn load_source(
+    text: &str,
+    origin: &str,
+    scene: Option<&str>,
+) -> Result<LoadedModel, LoadError> {
     load(text, origin, None, scene)
 }
 

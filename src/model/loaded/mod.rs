@@ -247,8 +247,7 @@ impl Model for Loaded {
     #[inline]
     fn static_bound(p: &LoadedParams) -> Option<f64> {
         let c = &p.model.code;
-        c.stick
-            .map(|s| eval(&c.machine, s.bound, &p.values, [])[0])
+        c.stick.map(|s| eval(&c.machine, s.bound, &p.values, [])[0])
     }
     #[inline]
     fn flow(p: &LoadedParams, domain: usize, x0: f64, v0: f64, phi0: f64, phi1: f64) -> [f64; 2] {

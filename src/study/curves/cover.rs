@@ -292,7 +292,11 @@ impl<'a, M: Model> Cover<'a, M> {
         self.curves.iter().any(|c| {
             if c.kind != start.kind
                 || c.boundary != start.boundary
-                || !same_structure(M::info(self.base), c.structure.as_ref(), start.structure.as_ref())
+                || !same_structure(
+                    M::info(self.base),
+                    c.structure.as_ref(),
+                    start.structure.as_ref(),
+                )
             {
                 return false;
             }
@@ -666,7 +670,9 @@ impl<'a, M: Model> Cover<'a, M> {
                     .collect();
                 CurveSummary {
                     kind: c.kind,
-                    boundary: c.boundary.map(|k| M::info(self.base).boundaries[k].label.to_string()),
+                    boundary: c
+                        .boundary
+                        .map(|k| M::info(self.base).boundaries[k].label.to_string()),
                     structure: structure_name(M::info(self.base), c.structure.as_ref()),
                     from: end(0),
                     to: end(1),

@@ -54,16 +54,17 @@ impl CurvesOptions {
         // fixed ones are constants), indexed by their place among them.
         let info = M::info(base);
         let index = |name: &str| {
-            base.index_of(name).ok_or_else(|| CurvesError::UnknownParam {
-                name: name.to_string(),
-                model: info.name.to_string(),
-                free: info
-                    .free
-                    .iter()
-                    .map(|&i| info.params[i].name)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })
+            base.index_of(name)
+                .ok_or_else(|| CurvesError::UnknownParam {
+                    name: name.to_string(),
+                    model: info.name.to_string(),
+                    free: info
+                        .free
+                        .iter()
+                        .map(|&i| info.params[i].name)
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })
         };
         let (x, y) = (index(&self.x.0)?, index(&self.y.0)?);
         if x == y {

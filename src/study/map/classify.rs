@@ -97,7 +97,10 @@ pub(super) fn unsettled<M: Model>(
             } else {
                 String::new()
             };
-            format!("{} (settles later on {structure}{n})", failure(sim.info(), e))
+            format!(
+                "{} (settles later on {structure}{n})",
+                failure(sim.info(), e)
+            )
         }
         Verdict::NoMotion | Verdict::Stick => failure(sim.info(), e),
     }

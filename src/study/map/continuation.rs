@@ -407,7 +407,11 @@ fn settle_cell<M: Model>(cell: &mut Cell<M>, lost: &[&Motion]) {
         let known = known_at(&sim, cell, seg.phase);
         // What the lost motion becomes; a start that does not settle is no
         // start of the simulation method, so it does not change the status.
-        let _ = take(sim.info(), cell, known::settle(&sim, &known, seg, opts).outcome);
+        let _ = take(
+            sim.info(),
+            cell,
+            known::settle(&sim, &known, seg, opts).outcome,
+        );
     }
     cell.status = if problems.is_empty() {
         "ok".to_string()
