@@ -101,7 +101,7 @@ pub(crate) fn pipeline<B: Backend>(
 ) -> Result<B::Output, Diagnostics> {
     let ast = parse(tokens, file)?;
     let model = check(ast)?;
-    let expanded = expand::expand(&model)?;
+    let expanded = backend.select(&model, expand::expand(&model)?)?;
     let generation = equations::build(expanded)?;
     backend.emit(&model, generation)
 }
@@ -112,6 +112,16 @@ pub(crate) fn pipeline<B: Backend>(
 pub trait Backend {
     /// What it makes.
     type Output;
+    /// The instances it needs of those every check has passed (all, by
+    /// default): only these get their equations.
+    fn select(
+        &self,
+        model: &Model,
+        expanded: expand::Expanded,
+    ) -> Result<expand::Expanded, Diagnostics> {
+        let _ = model;
+        Ok(expanded)
+    }
     /// Make it from the checked `model` and its equations.
     fn emit(
         self,

@@ -231,3 +231,10 @@ impl From<stickslip::models::LookupError> for CliError {
         }
     }
 }
+
+impl CliError {
+    /// Whether this is a model file's report (each error headed `error:`).
+    pub fn is_report(&self) -> bool {
+        matches!(self, CliError::Load(_))
+    }
+}

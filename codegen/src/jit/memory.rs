@@ -35,20 +35,39 @@ impl<const A: usize, const O: usize> Copy for FnId<A, O> {}
 
 /// One function's entry point and the arity it was compiled with.
 struct Entry {
-    code: Raw,
+    code: Option<Raw>,
     args: usize,
     outs: usize,
 }
 
-/// The machine code of one model: every function defined in `module`,
-/// finalized. Read-only once made.
+/// The machine code of one model: its functions, compiled into one or more
+/// modules (one per thread that compiled them). Read-only once made.
 pub struct Machine {
-    module: Option<JITModule>,
+    modules: Vec<JITModule>,
     entries: Vec<Entry>,
     params: usize,
 }
 
-// SAFETY: after `Machine::new` the module is never used through `&self`
+/// Some of a machine's functions: a finalized module and, per function,
+/// its index in the machine, its id in the module and its arity.
+pub(super) struct Part {
+    module: JITModule,
+    functions: Vec<(usize, FuncId, usize, usize)>,
+}
+
+// SAFETY: a part is a finalized module that is only moved (from the thread
+// that compiled it to the one that makes the `Machine`), never used there
+// but through `Machine::new`, which reads the functions' addresses.
+unsafe impl Send for Part {}
+
+impl Part {
+    /// The finalized `module` and its `functions`.
+    pub(super) fn new(module: JITModule, functions: Vec<(usize, FuncId, usize, usize)>) -> Self {
+        Self { module, functions }
+    }
+}
+
+// SAFETY: after `Machine::new` the modules are never used through `&self`
 // (only dropped, through `&mut self`), and the code it holds is immutable
 // executable memory; the function pointers are plain addresses into it.
 // Calling them from several threads at once is calling pure functions of
@@ -59,13 +78,20 @@ unsafe impl Send for Machine {}
 unsafe impl Sync for Machine {}
 
 impl Machine {
-    /// The finalized `module`'s functions `ids`, each compiled with the
-    /// arity given; every function reads at most `params` parameter values.
-    /// `module.finalize_definitions()` must have succeeded.
-    pub(super) fn new(module: JITModule, ids: &[(FuncId, usize, usize)], params: usize) -> Self {
-        let entries = ids
-            .iter()
-            .map(|&(id, args, outs)| {
+    /// The `count` functions of the finalized `parts`, each compiled with
+    /// the arity given; every function reads at most `params` parameter
+    /// values. A function no part holds is never called (its calls give NaN).
+    pub(super) fn new(parts: Vec<Part>, count: usize, params: usize) -> Self {
+        let mut entries: Vec<Entry> = (0..count)
+            .map(|_| Entry {
+                code: None,
+                args: usize::MAX,
+                outs: usize::MAX,
+            })
+            .collect();
+        let mut modules = Vec::with_capacity(parts.len());
+        for Part { module, functions } in parts {
+            for (index, id, args, outs) in functions {
                 let ptr = module.get_finalized_function(id);
                 // SAFETY: `ptr` is the entry of a function defined in
                 // `module` with the signature `(i64, i64, i64) -> ()` in the
@@ -74,11 +100,18 @@ impl Machine {
                 // the code is in place and executable. It stays valid while
                 // `module` lives, which is as long as this `Machine`.
                 let code = unsafe { std::mem::transmute::<*const u8, Raw>(ptr) };
-                Entry { code, args, outs }
-            })
-            .collect();
+                if let Some(e) = entries.get_mut(index) {
+                    *e = Entry {
+                        code: Some(code),
+                        args,
+                        outs,
+                    };
+                }
+            }
+            modules.push(module);
+        }
         Self {
-            module: Some(module),
+            modules,
             entries,
             params,
         }
@@ -111,12 +144,16 @@ impl Machine {
         out: &mut [f64; O],
     ) {
         match self.entries.get(f.index as usize) {
-            Some(e) if e.args == A && e.outs == O && params.len() >= self.params => {
+            Some(&Entry {
+                code: Some(code),
+                args: a,
+                outs: o,
+            }) if a == A && o == O && params.len() >= self.params => {
                 // SAFETY: the function reads `params[..self.params]` (checked
                 // above to exist), `args[..A]` and writes `out[..O]` (its
                 // arity, checked above against the arrays' types), and
                 // nothing else; the code lives as long as `self`.
-                unsafe { (e.code)(params.as_ptr(), args.as_ptr(), out.as_mut_ptr()) }
+                unsafe { code(params.as_ptr(), args.as_ptr(), out.as_mut_ptr()) }
             }
             _ => out.fill(f64::NAN),
         }
@@ -125,7 +162,7 @@ impl Machine {
 
 impl Drop for Machine {
     fn drop(&mut self) {
-        if let Some(module) = self.module.take() {
+        for module in self.modules.drain(..) {
             // SAFETY: the code is reachable only through `self.entries`,
             // which is dropped with `self`: no function is running (calls
             // borrow `self`) and none can be called afterwards.

@@ -19,17 +19,16 @@ mod walk;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use cranelift_codegen::settings::{self, Configurable};
-use cranelift_codegen::Context;
 use cranelift_frontend::FunctionBuilderContext;
 use cranelift_jit::{JITBuilder, JITModule};
-use cranelift_module::{FuncId, Module};
+use cranelift_module::Module;
 use proc_macro2::Span;
 
 pub use memory::{FnId, Machine};
 
 use crate::diagnostic::Diagnostics;
 use crate::equations::{Equations, Generation, MainEquations, Regime, SmoothEquations};
-use crate::expand::{Instance, Smooth};
+use crate::expand::{Expanded, Instance, Main, Smooth};
 use crate::expr::Id;
 use crate::lowered::LAW_V;
 use crate::report::{run_text, Report};
@@ -184,24 +183,33 @@ struct Jit<'a> {
 
 impl Backend for Jit<'_> {
     type Output = Compiled;
-    fn emit(self, model: &Model, generation: Generation) -> Result<Compiled, Diagnostics> {
-        let Generation { main, scenes, .. } = generation;
-        let compiled = match (self.scene, main) {
-            (None, MainEquations::Piecewise(e)) => self.piecewise(*e),
-            (None, MainEquations::Smooth(s)) => self.smooth(*s),
-            (Some(want), _) => {
-                let names: Vec<String> = scenes
-                    .iter()
-                    .filter_map(|(_, _, e)| e.instance.scene_name.clone())
-                    .collect();
-                let Some((_, _, e)) = scenes
-                    .into_iter()
-                    .find(|(_, _, e)| e.instance.scene_name.as_deref() == Some(want))
-                else {
-                    return Err(no_scene(model, want, &names));
-                };
-                self.piecewise(e)
-            }
+
+    /// The one instance asked for, as the main one: the others are
+    /// expanded (every check runs on every scene, as the build checks
+    /// them) but get no equations.
+    fn select(&self, model: &Model, mut expanded: Expanded) -> Result<Expanded, Diagnostics> {
+        let Some(want) = self.scene else {
+            expanded.scenes.clear();
+            return Ok(expanded);
+        };
+        let names: Vec<String> = expanded
+            .scenes
+            .iter()
+            .filter_map(|s| s.instance.scene_name.clone())
+            .collect();
+        let Some(at) = names.iter().position(|n| n == want) else {
+            return Err(no_scene(model, want, &names));
+        };
+        let scene = expanded.scenes.swap_remove(at);
+        expanded.main = Main::Piecewise(Box::new(scene.instance));
+        expanded.scenes.clear();
+        Ok(expanded)
+    }
+
+    fn emit(self, _: &Model, generation: Generation) -> Result<Compiled, Diagnostics> {
+        let compiled = match generation.main {
+            MainEquations::Piecewise(e) => self.piecewise(*e),
+            MainEquations::Smooth(s) => self.smooth(*s),
         }?;
         COMPILED.fetch_add(1, Ordering::Relaxed);
         Ok(compiled)
@@ -255,19 +263,29 @@ fn too_many(params: &[crate::expand::ParamDecl], free: &[usize]) -> Result<(), D
 }
 
 /// A module for the host with the runtime's routines bound.
-fn new_module(routines: &Routines) -> Result<JITModule, Diagnostics> {
+fn new_module(routines: &Routines) -> Result<JITModule, String> {
     let mut flags = settings::builder();
+    // The graph arrives optimized (hash-consed, folded): Cranelift's own
+    // optimizer finds nothing to gain there and would cost compile time. Its
+    // verifier checks the IR this back end writes where debug assertions
+    // are on (tests, fuzzing); a release build trusts it.
+    let verifier = if cfg!(debug_assertions) {
+        "true"
+    } else {
+        "false"
+    };
     for (name, value) in [
-        ("opt_level", "speed"),
+        ("opt_level", "none"),
+        ("enable_verifier", verifier),
         ("use_colocated_libcalls", "false"),
         ("is_pic", "false"),
     ] {
-        flags.set(name, value).map_err(internal)?;
+        flags.set(name, value).map_err(|e| e.to_string())?;
     }
     let isa = cranelift_native::builder()
-        .map_err(internal)?
+        .map_err(|e| e.to_string())?
         .finish(settings::Flags::new(flags))
-        .map_err(internal)?;
+        .map_err(|e| e.to_string())?;
     let mut builder = JITBuilder::with_isa(isa, cranelift_module::default_libcall_names());
     let r = routines;
     builder.symbols([
@@ -283,60 +301,113 @@ fn new_module(routines: &Routines) -> Result<JITModule, Diagnostics> {
     Ok(JITModule::new(builder))
 }
 
-/// Defines functions in one module, then finalizes it into a [`Machine`].
-struct Build {
-    module: JITModule,
-    imports: Imports,
-    ids: Vec<(FuncId, usize, usize)>,
-    ctx: Option<(Context, FunctionBuilderContext)>,
+/// One function to compile: its variables, argument count and outputs.
+struct Spec<'a> {
+    vars: &'a [(u32, Slot)],
+    args: usize,
+    outputs: Vec<Id>,
 }
 
-impl Build {
-    fn new(routines: &Routines) -> Result<Self, Diagnostics> {
-        let mut module = new_module(routines)?;
-        let imports = Imports::declare(&mut module).map_err(internal)?;
-        let ctx = Some((module.make_context(), FunctionBuilderContext::new()));
-        Ok(Self {
-            module,
-            imports,
-            ids: Vec::new(),
-            ctx,
-        })
-    }
+/// The functions of one model, collected, then compiled into a [`Machine`]:
+/// on as many threads as the machine has cores (at most [`THREADS`]), each
+/// a module of its own, the functions dealt out by size.
+struct Build<'a> {
+    graph: &'a crate::expr::Graph,
+    specs: Vec<Spec<'a>>,
+}
 
-    /// Define a function of `vars` computing `outputs`; its index.
-    fn define(
-        &mut self,
-        graph: &crate::expr::Graph,
-        vars: &[(u32, Slot)],
-        args: usize,
-        outputs: &[Id],
-    ) -> Result<usize, Diagnostics> {
-        let (ctx, fctx) = self
-            .ctx
-            .take()
-            .unwrap_or_else(|| (self.module.make_context(), FunctionBuilderContext::new()));
-        let mut compiler = Compiler {
-            module: &mut self.module,
-            imports: &self.imports,
-            ctx,
-            fctx,
-            count: self.ids.len(),
-        };
-        let id = compiler.define(&Function {
+/// The most threads one model is compiled on.
+const THREADS: usize = 4;
+
+impl<'a> Build<'a> {
+    fn new(graph: &'a crate::expr::Graph) -> Self {
+        Self {
             graph,
-            vars,
-            outputs,
-        });
-        self.ctx = Some((compiler.ctx, compiler.fctx));
-        self.ids.push((id.map_err(internal)?, args, outputs.len()));
-        Ok(self.ids.len() - 1)
+            specs: Vec::new(),
+        }
     }
 
-    fn finish(mut self, params: usize) -> Result<Machine, Diagnostics> {
-        self.module.finalize_definitions().map_err(internal)?;
-        Ok(Machine::new(self.module, &self.ids, params))
+    /// A function of `vars` (`args` of them) computing `outputs`; its index.
+    fn define(&mut self, vars: &'a [(u32, Slot)], args: usize, outputs: &[Id]) -> usize {
+        self.specs.push(Spec {
+            vars,
+            args,
+            outputs: outputs.to_vec(),
+        });
+        self.specs.len() - 1
     }
+
+    /// Compile every function; the machine reads `params` parameter values.
+    fn finish(self, routines: &Routines, params: usize) -> Result<Machine, Diagnostics> {
+        let threads = std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .clamp(1, THREADS)
+            .min(self.specs.len().max(1));
+        // Deal the functions out largest first, each to the lightest share.
+        let size = |s: &Spec<'_>| {
+            crate::expr::Schedule::new(self.graph, &s.outputs)
+                .nodes()
+                .count()
+        };
+        let mut order: Vec<(usize, usize)> = self.specs.iter().map(size).enumerate().collect();
+        order.sort_by(|a, b| b.1.cmp(&a.1));
+        let mut shares: Vec<(usize, Vec<usize>)> = vec![(0, Vec::new()); threads];
+        for (index, weight) in order {
+            if let Some(share) = shares.iter_mut().min_by_key(|s| s.0) {
+                share.0 += weight;
+                share.1.push(index);
+            }
+        }
+        let graph = self.graph;
+        let specs = &self.specs;
+        let parts = std::thread::scope(|scope| {
+            let handles: Vec<_> = shares
+                .into_iter()
+                .map(|(_, share)| {
+                    scope.spawn(move || compile_share(graph, specs, &share, routines))
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .map_err(internal)?;
+        Ok(Machine::new(parts, self.specs.len(), params))
+    }
+}
+
+/// The functions `share` of `specs` compiled into one module, finalized:
+/// the module and, per function, its index among `specs`, id and arity.
+fn compile_share(
+    graph: &crate::expr::Graph,
+    specs: &[Spec<'_>],
+    share: &[usize],
+    routines: &Routines,
+) -> Result<memory::Part, String> {
+    let mut module = new_module(routines)?;
+    let imports = Imports::declare(&mut module).map_err(|e| e.to_string())?;
+    let mut compiler = Compiler {
+        ctx: module.make_context(),
+        module: &mut module,
+        imports: &imports,
+        fctx: FunctionBuilderContext::new(),
+        count: 0,
+    };
+    let mut ids = Vec::with_capacity(share.len());
+    for &i in share {
+        let spec = &specs[i];
+        let id = compiler
+            .define(&Function {
+                graph,
+                vars: spec.vars,
+                outputs: &spec.outputs,
+            })
+            .map_err(|e| e.to_string())?;
+        ids.push((i, id, spec.args, spec.outputs.len()));
+    }
+    module.finalize_definitions().map_err(|e| e.to_string())?;
+    Ok(memory::Part::new(module, ids))
 }
 
 const FLOW: [(u32, Slot); 4] = [
@@ -381,43 +452,41 @@ impl Jit<'_> {
         let inst = &e.instance;
         too_many(&inst.params, &inst.free)?;
         let g = &inst.lowered.graph;
-        let mut b = Build::new(self.routines)?;
-        let defined =
-            |b: &mut Build, vars: &[(u32, Slot)], args, outs: &[Id]| b.define(g, vars, args, outs);
+        let mut b = Build::new(g);
         let mut coefficients = Vec::new();
         let mut flows = Vec::new();
         let mut fields = Vec::new();
         for d in &e.domains {
-            coefficients.push(defined(&mut b, &[], 0, &d.coefficients)?);
-            flows.push(defined(&mut b, &FLOW, 4, &d.flow)?);
-            fields.push(defined(&mut b, &FIELD, 3, &d.field)?);
+            coefficients.push(b.define(&[], 0, &d.coefficients));
+            flows.push(b.define(&FLOW, 4, &d.flow));
+            fields.push(b.define(&FIELD, 3, &d.field));
         }
         let mut residuals = Vec::new();
         let mut mappings = Vec::new();
         for m in &e.mappings {
-            residuals.push(defined(&mut b, &MAPPING, 8, &m.residual)?);
+            residuals.push(b.define(&MAPPING, 8, &m.residual));
             let mut all = m.residual.to_vec();
             all.extend(m.jacobian);
-            mappings.push(defined(&mut b, &MAPPING, 8, &all)?);
+            mappings.push(b.define(&MAPPING, 8, &all));
         }
         let velocities: Vec<usize> = e
             .conditions
             .velocities
             .iter()
-            .map(|&v| defined(&mut b, &[], 0, &[v]))
-            .collect::<Result<_, _>>()?;
-        let oscillator = defined(&mut b, &[], 0, &e.oscillator)?;
+            .map(|&v| b.define(&[], 0, &[v]))
+            .collect();
+        let oscillator = b.define(&[], 0, &e.oscillator);
         let c = &e.conditions;
-        let conditions = defined(&mut b, &[], 0, &[c.mass, c.stiffness, c.frequency])?;
+        let conditions = b.define(&[], 0, &[c.mass, c.stiffness, c.frequency]);
         let stick = match (&e.stick, &c.stick) {
             (Some(s), Some(levels)) => Some((
-                defined(&mut b, &FORCES, 2, &s.forces)?,
-                defined(&mut b, &[], 0, &[s.bound])?,
-                defined(&mut b, &[], 0, levels)?,
+                b.define(&FORCES, 2, &s.forces),
+                b.define(&[], 0, &[s.bound]),
+                b.define(&[], 0, levels),
             )),
             _ => None,
         };
-        let machine = b.finish(inst.free.len())?;
+        let machine = b.finish(self.routines, inst.free.len())?;
         let code = PiecewiseCode {
             coefficients: ids(&machine, coefficients)?,
             flows: ids(&machine, flows)?,
@@ -450,14 +519,14 @@ impl Jit<'_> {
         let free: Vec<usize> = (0..s.params.len()).collect();
         too_many(&s.params, &free)?;
         let g = &s.lowered.graph;
-        let mut b = Build::new(self.routines)?;
-        let law = [(LAW_V, Slot::Plain(0))];
-        let kinetic = b.define(g, &law, 1, &e.kinetic)?;
-        let belt = b.define(g, &[], 0, &[s.law.belt])?;
-        let bound = b.define(g, &[], 0, &[s.law.stick])?;
-        let oscillator = b.define(g, &[], 0, &e.oscillator)?;
-        let conditions = b.define(g, &[], 0, &e.conditions)?;
-        let machine = b.finish(free.len())?;
+        let mut b = Build::new(g);
+        const LAW: [(u32, Slot); 1] = [(LAW_V, Slot::Plain(0))];
+        let kinetic = b.define(&LAW, 1, &e.kinetic);
+        let belt = b.define(&[], 0, &[s.law.belt]);
+        let bound = b.define(&[], 0, &[s.law.stick]);
+        let oscillator = b.define(&[], 0, &e.oscillator);
+        let conditions = b.define(&[], 0, &e.conditions);
+        let machine = b.finish(self.routines, free.len())?;
         let code = SmoothCode {
             kinetic: one(&machine, kinetic)?,
             belt: one(&machine, belt)?,

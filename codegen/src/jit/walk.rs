@@ -13,8 +13,6 @@
 //! `exp`, `ln` and the homogeneous solutions are calls to the runtime's own
 //! routines (`Routines`).
 
-use std::collections::HashMap;
-
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::immediates::Ieee64;
 use cranelift_codegen::ir::{types, AbiParam, FuncRef, InstBuilder, MemFlags, Signature, Value};
@@ -140,9 +138,9 @@ impl Compiler<'_> {
                 vars: f.vars,
                 params: p[0],
                 args: p[1],
-                values: HashMap::new(),
-                homs: HashMap::new(),
-                refs: HashMap::new(),
+                values: Vec::new(),
+                homs: Vec::new(),
+                refs: Vec::new(),
             };
             walk.body(f.outputs, p[2]);
             walk.b.ins().return_(&[]);
@@ -162,9 +160,12 @@ struct Walk<'a, 'b> {
     vars: &'a [(u32, Slot)],
     params: Value,
     args: Value,
-    values: HashMap<Id, Value>,
-    homs: HashMap<(Id, Id, Id), (Value, Value)>,
-    refs: HashMap<FuncId, FuncRef>,
+    /// Each computed node's value, by node index.
+    values: Vec<Option<Value>>,
+    /// `(Ec, Es)` of each `(d, c, tau)` called for.
+    homs: Vec<((Id, Id, Id), (Value, Value))>,
+    /// The routines declared in this function.
+    refs: Vec<(FuncId, FuncRef)>,
 }
 
 /// Loads of values the function only reads, aligned, that cannot trap
@@ -178,15 +179,63 @@ impl Walk<'_, '_> {
     /// store the outputs.
     fn body(&mut self, outputs: &[Id], out: Value) {
         let schedule = Schedule::new(self.graph, outputs);
-        for id in schedule.nodes() {
-            let v = self.node(&schedule, id);
-            self.values.insert(id, v);
+        let nodes: Vec<Id> = schedule.nodes().collect();
+        // The calls first, each after what it needs, then the rest: few
+        // values live across a call (which clobbers every float register),
+        // so register allocation has little to spill. The order changes no
+        // number: every node is the same operation on the same operands.
+        let n = nodes.last().map_or(0, |l| l.0 as usize + 1);
+        self.values = vec![None; n];
+        // `1/b` in `a * (1/b)` and `-b` in `a + (-b)`, where used there only,
+        // are never computed: the division and the subtraction take `b`.
+        let g = self.graph;
+        let mut fused = vec![false; n];
+        for &id in &nodes {
+            if let Node::Mul(_, b) | Node::Add(_, b) = g.node(id) {
+                let fuses = matches!(
+                    (g.node(id), g.node(b)),
+                    (Node::Mul(..), Node::Recip(_)) | (Node::Add(..), Node::Neg(_))
+                );
+                if fuses && !schedule.is_bound(g, b) {
+                    fused[b.0 as usize] = true;
+                }
+            }
+        }
+        let mut early = vec![false; n];
+        for &id in nodes.iter().rev() {
+            if early[id.0 as usize] || self.is_call(id) {
+                early[id.0 as usize] = true;
+                for c in crate::expr::children(self.graph.node(id)) {
+                    early[c.0 as usize] = true;
+                }
+            }
+        }
+        for pass in [true, false] {
+            for &id in nodes
+                .iter()
+                .filter(|id| early[id.0 as usize] == pass && !fused[id.0 as usize])
+            {
+                let v = self.node(&schedule, id);
+                self.values[id.0 as usize] = Some(v);
+            }
         }
         for (k, &o) in outputs.iter().enumerate() {
-            let v = self.values[&o];
+            let v = self.value(o);
             self.b
                 .ins()
                 .store(MemFlags::trusted(), v, out, (8 * k) as i32);
+        }
+    }
+
+    /// Whether node `id` is a call to a runtime routine.
+    fn is_call(&self, id: Id) -> bool {
+        match self.graph.node(id) {
+            Node::Exp(_) | Node::Ln(_) | Node::Hom(..) => true,
+            Node::Sin(a) | Node::Cos(a) => !matches!(
+                self.graph.node(a),
+                Node::Var(k) if matches!(self.slot(k), Some(Slot::Phase(_)))
+            ),
+            _ => false,
         }
     }
 
@@ -200,12 +249,17 @@ impl Walk<'_, '_> {
             .load(types::F64, reads(), self.args, (8 * slot) as i32)
     }
 
+    /// The value of a node computed before (children come first).
+    fn value(&self, id: Id) -> Value {
+        self.values[id.0 as usize].expect("children are computed before their parents")
+    }
+
     fn call(&mut self, f: FuncId, args: &[Value]) -> Vec<Value> {
-        let r = match self.refs.get(&f) {
-            Some(&r) => r,
+        let r = match self.refs.iter().find(|(id, _)| *id == f) {
+            Some(&(_, r)) => r,
             None => {
                 let r = self.module.declare_func_in_func(f, self.b.func);
-                self.refs.insert(f, r);
+                self.refs.push((f, r));
                 r
             }
         };
@@ -214,7 +268,7 @@ impl Walk<'_, '_> {
     }
 
     fn unary(&mut self, f: FuncId, a: Id) -> Value {
-        let a = self.values[&a];
+        let a = self.value(a);
         self.call(f, &[a])[0]
     }
 
@@ -230,7 +284,7 @@ impl Walk<'_, '_> {
 
     fn node(&mut self, schedule: &Schedule, id: Id) -> Value {
         let g = self.graph;
-        let v = |w: &Self, c: Id| w.values[&c];
+        let v = |w: &Self, c: Id| w.value(c);
         match g.node(id) {
             Node::Const(bits) => self.b.ins().f64const(Ieee64::with_bits(bits)),
             Node::Param(k) => self
@@ -341,28 +395,28 @@ impl Walk<'_, '_> {
     /// `(Ec, Es)` of `(d, c, tau)`, one call per triple, to the routine the
     /// Rust back end calls: specialised when `d` and `c` are constants.
     fn hom(&mut self, d: Id, c: Id, tau: Id) -> (Value, Value) {
-        if let Some(&pair) = self.homs.get(&(d, c, tau)) {
+        if let Some(&(_, pair)) = self.homs.iter().find(|(k, _)| *k == (d, c, tau)) {
             return pair;
         }
         let g = self.graph;
-        let (dv, tv) = (self.values[&d], self.values[&tau]);
+        let (dv, tv) = (self.value(d), self.value(tau));
         let r = match (g.as_const(d), g.as_const(c)) {
             (Some(dc), Some(cc)) if dc * dc < cc => {
                 let omega = self.b.ins().f64const((cc - dc * dc).sqrt());
                 self.call(self.imports.underdamped, &[dv, omega, tv])
             }
             (Some(dc), Some(cc)) if dc * dc > cc => {
-                let cv = self.values[&c];
+                let cv = self.value(c);
                 self.call(self.imports.overdamped, &[dv, cv, tv])
             }
             (Some(_), Some(_)) => self.call(self.imports.critical, &[dv, tv]),
             _ => {
-                let cv = self.values[&c];
+                let cv = self.value(c);
                 self.call(self.imports.general, &[dv, cv, tv])
             }
         };
         let pair = (r[0], r[1]);
-        self.homs.insert((d, c, tau), pair);
+        self.homs.push(((d, c, tau), pair));
         pair
     }
 }

@@ -19,7 +19,7 @@
 
 mod describe;
 mod intern;
-mod routines;
+pub mod routines;
 
 use std::fmt;
 

@@ -46,7 +46,7 @@ extern "C" fn critical(d: f64, tau: f64) -> HomPair {
 }
 
 /// The table handed to the run-time back end.
-pub(super) const ROUTINES: Routines = Routines {
+pub const ROUTINES: Routines = Routines {
     sin,
     cos,
     exp,
