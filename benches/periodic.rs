@@ -13,7 +13,6 @@ use stickslip::orbit::attractor::{self, AttractorOptions};
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
-use stickslip::Model;
 
 /// The reference six-mapping motion at W = 5, Q0 = 70 (../shared/reference).
 const W5: [(f64, f64); 6] = [

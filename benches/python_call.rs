@@ -24,12 +24,14 @@ use stickslip::{Model, ModelVisitor, ParamSet};
 type Answer = (String, Option<String>, String);
 
 /// `_native.simulate`'s work with model `M`.
-fn simulate<M: Model>(pairs: &[(&str, f64)], start: (f64, f64, f64)) -> Answer {
-    let p = M::Params::from_pairs(M::INFO, pairs).expect("valid parameters");
+fn simulate<M: Model>(base: M::Params, pairs: &[(&str, f64)], start: (f64, f64, f64)) -> Answer {
+    let p = base
+        .with_pairs(M::identity(&base), pairs)
+        .expect("valid parameters");
     let sim = Simulator::<M>::new(p, SimOptions::default()).expect("a simulator");
     let settled = settle(&sim, start, AttractorOptions::default()).expect("settles");
     let settings: Vec<String> = pairs.iter().map(|(n, v)| format!("{n} = {v}")).collect();
-    let title = settled.title(M::INFO.name, &settings.join(", "));
+    let title = settled.title(sim.info().name, &settings.join(", "));
     (settled.report.to_json(), settled.report.failure(), title)
 }
 
@@ -83,8 +85,8 @@ struct Simulate<'a> {
 
 impl ModelVisitor for Simulate<'_> {
     type Output = Answer;
-    fn piecewise<M: Model>(self) -> Option<Answer> {
-        Some(simulate::<M>(self.pairs, self.start))
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Answer> {
+        Some(simulate::<M>(base, self.pairs, self.start))
     }
 }
 

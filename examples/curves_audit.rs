@@ -53,7 +53,7 @@ fn run<M: Model>(
                 c.kind,
                 c.structure
                     .as_ref()
-                    .map(|s| s.notation(M::INFO))
+                    .map(|s| s.notation(M::info(&base)))
                     .unwrap_or_default(),
                 q.x,
                 q.y

@@ -162,7 +162,7 @@ impl<'a> Bytes<'a> {
 /// domains (the step rule of `Simulator::next_event`).
 fn steps_per_period<M: Model>(p: &M::Params) -> f64 {
     let w = M::oscillator(p).frequency;
-    (0..M::INFO.domains.len())
+    (0..M::info(p).domains.len())
         .map(|j| {
             let co = M::coefficients(p, j);
             let step = std::f64::consts::FRAC_PI_4
@@ -187,9 +187,12 @@ pub fn runtime(data: &[u8]) {
 
 /// Work per input is bounded: at most 400 events per simulated run, 4
 /// forcing periods for `run`, 12 for `attractor::find`, 30 Newton iterations.
-fn exercise<M: Model>(r: &mut Bytes) {
+fn exercise<M: Model>(r: &mut Bytes)
+where
+    M::Params: Default,
+{
     let mut p = M::Params::default();
-    for i in 0..M::Params::NAMES.len() {
+    for i in 0..p.names().len() {
         let value = r.f64(p.get(i));
         p.set(i, value);
     }
@@ -249,7 +252,7 @@ fn exercise<M: Model>(r: &mut Bytes) {
 
     // A structure (mostly well-formed, sometimes arbitrary text) solved by
     // Newton from an arbitrary guess.
-    let info = M::INFO;
+    let info = M::info(&p);
     let names = info.mapping_names();
     let text = if r.byte() % 8 == 7 {
         let n = r.byte() % 24;

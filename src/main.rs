@@ -11,7 +11,12 @@ fn main() -> ExitCode {
     match cli::Cli::parse().run() {
         Ok(status) => status,
         Err(e) => {
-            eprintln!("error: {e}");
+            // A rejected model file's report is `stickslip check`'s, each
+            // error already headed `error:`.
+            match e.is_report() {
+                true => eprintln!("{e}"),
+                false => eprintln!("error: {e}"),
+            }
             ExitCode::FAILURE
         }
     }

@@ -3,9 +3,14 @@
 //! Each model is a module (`models::paper`) with its `Params`, its model type
 //! (`Paper`) and one submodule per scene (`models::paper::sweep_w`). The
 //! registry [`ALL`] has an [`Entry`] per model and scene, by kind;
-//! [`visit`] runs a [`ModelVisitor`] with one chosen by name.
+//! [`visit`] runs a [`ModelVisitor`] with one chosen by name. [`lookup`]
+//! is where they meet the models loaded at run time: a [`ModelRef`] names
+//! either.
+
+pub mod lookup;
 
 pub use crate::model::registry::{Entry, ModelVisitor};
+pub use lookup::{LookupError, ModelRef};
 
 include!(concat!(env!("OUT_DIR"), "/models.rs"));
 

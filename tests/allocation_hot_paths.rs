@@ -17,7 +17,6 @@ use stickslip::orbit::periodic::{
     monodromy_spectral, NewtonOptions, PeriodicSolver, SwitchingPoint,
 };
 use stickslip::orbit::structure::Structure;
-use stickslip::Model;
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;

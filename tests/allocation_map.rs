@@ -14,7 +14,6 @@ use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::map::Continuer;
-use stickslip::Model;
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;

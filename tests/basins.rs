@@ -80,8 +80,7 @@ fn sweep_motions() -> Vec<(String, Vec<(f64, f64)>)> {
         .iter()
         .filter(|m| m.stable)
         .map(|m| {
-            let structure =
-                Structure::parse(<Paper as stickslip::Model>::INFO, &m.structure, m.n).unwrap();
+            let structure = Structure::parse(Paper::INFO, &m.structure, m.n).unwrap();
             // The sweep gives phases mod 2π: make them increase again.
             let mut pts: Vec<SwitchingPoint> = Vec::new();
             for p in &m.points {

@@ -7,7 +7,6 @@ mod common;
 
 use std::process::Command;
 
-use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, Sweep, SweepOptions, TransitionKind};

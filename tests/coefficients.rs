@@ -86,7 +86,7 @@ fn scene_folds_fixed_parameters_and_keeps_the_numbers() {
 
 #[test]
 fn params_reject_bad_values_with_typed_errors() {
-    use stickslip::{ParamError, ParamSet};
+    use stickslip::ParamError;
     let info = Paper::INFO;
     assert!(matches!(
         Params::from_pairs(info, &[("W", f64::NAN)]),

@@ -96,7 +96,7 @@ fn check_point<M: Model>(
             q.value
         ));
     }
-    let info = M::INFO;
+    let info = sim.info();
     let mut prev = stickslip::dynamics::simulate::Event {
         phase: seg.phase,
         x: seg.x,
@@ -107,7 +107,7 @@ fn check_point<M: Model>(
         after: seg.location,
     };
     for (k, e) in events.iter().enumerate() {
-        let got = mapping_between::<M>(&prev, e);
+        let got = mapping_between(sim.info(), &prev, e);
         if got != Some(steps[k]) {
             return Err(format!(
                 "segment {k} follows {got:?}, the structure says {} at {}",
@@ -153,7 +153,7 @@ fn check_unstable<M: Model>(base: &M::Params, index: usize, b: &Branch) -> usize
         .filter(|q| !q.stability.is_stable() && !at_transition(q))
     {
         if let Err(e) = check_point::<M>(base, index, &b.structure, q) {
-            panic!("{}: {e}", b.structure.notation(M::INFO));
+            panic!("{}: {e}", b.structure.notation(M::info(base)));
         }
         n += 1;
     }

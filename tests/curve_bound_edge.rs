@@ -25,7 +25,6 @@ use stickslip::bifurcation::TransitionKind;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::Model;
 
 fn kind_name(kind: TransitionKind) -> &'static str {
     match kind {

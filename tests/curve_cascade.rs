@@ -52,7 +52,7 @@ use stickslip::orbit::admissible::{conditions, ViolationKind};
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
-use stickslip::{Model, ParamSet};
+use stickslip::ParamSet;
 
 const SIGMA1: usize = 1;
 

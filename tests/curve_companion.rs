@@ -31,7 +31,6 @@ use stickslip::bifurcation::curve::{
 };
 use stickslip::models::paper::reference::{Params, Reference};
 use stickslip::study::curves::{traced, CurvesOptions, CurvesSettings};
-use stickslip::Model;
 
 #[test]
 fn curves_switched_to_without_guards_stay_where_their_motion_exists() {

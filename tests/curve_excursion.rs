@@ -29,7 +29,7 @@ use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;
-use stickslip::{MappingKind, Model};
+use stickslip::MappingKind;
 
 #[test]
 fn a_curve_whose_excursion_between_sticks_vanishes_ends_at_the_period_doubling_it_was_born_at() {

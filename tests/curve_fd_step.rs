@@ -34,7 +34,7 @@ use stickslip::bifurcation::curve::{
 use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::periodic::PeriodicSolver;
-use stickslip::{Model, ParamSet};
+use stickslip::ParamSet;
 
 const T: &str = "P_{7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77}";
 
@@ -150,6 +150,6 @@ fn a_grazing_curve_of_a_strongly_expanding_motion_ends_where_its_stick_vanishes(
         ends(graze),
         ends(vanish)
     );
-    let bad = other_ends::<Stribeck8>(&curves);
+    let bad = other_ends(Stribeck8::INFO, &curves);
     assert!(bad.is_empty(), "{bad:#?}");
 }

@@ -24,7 +24,7 @@ use stickslip::orbit::periodic::{
     monodromy, NewtonOptions, PeriodicSolver, SwitchingPoint, Termination,
 };
 use stickslip::orbit::structure::Structure;
-use stickslip::{Model, ParamSet};
+use stickslip::ParamSet;
 
 /// The squared difference of the two halves of a motion of `periods`
 /// forcing periods (the second half's phases less half the cycle).

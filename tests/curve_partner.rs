@@ -39,7 +39,6 @@ use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
 
 const S: &str = "P_{3_31 0_11 3_13 4_33 3_31 0_11 3_13 4_33 3_33 4_33}";
 const Q0: f64 = 80.0;

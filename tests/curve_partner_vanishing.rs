@@ -103,7 +103,7 @@ fn switched_starts_and_curves_keep_every_segment() {
             short > 1e-6,
             "{:?} curve of {} has a segment of {short:e} rad at ({}, {})",
             c.kind,
-            s.notation(<Stribeck8 as stickslip::Model>::INFO),
+            s.notation(Stribeck8::INFO),
             mid.x,
             mid.y
         );

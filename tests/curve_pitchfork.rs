@@ -43,7 +43,6 @@ use stickslip::models::coulomb::Coulomb;
 use stickslip::orbit::periodic::{monodromy, NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::Model;
 
 const MOTION: &str = "P_{0_11 1_11 0_11 2_11}";
 
@@ -107,7 +106,7 @@ fn the_curve_is_traced_and_ends_at_the_box_or_a_codim2_point() {
         c.points.len()
     );
     assert_eq!(c.ends.len(), 2, "a closed curve?");
-    let other = other_ends::<Coulomb>(std::slice::from_ref(c));
+    let other = other_ends(Coulomb::INFO, std::slice::from_ref(c));
     assert!(other.is_empty(), "{other:?}");
     // It spans the box's height range it crosses, not a stub.
     let (lo, hi) = c

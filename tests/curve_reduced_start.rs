@@ -50,7 +50,6 @@ use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
 
 const SPLIT: &str = "P_{7_76 6_65 5_51 0_11 1_11 0_11 5_15 6_56 7_67 8_77}";
 const REDUCED: &str = "P_{7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77}";

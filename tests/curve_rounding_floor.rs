@@ -37,7 +37,7 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
     let base = pl4::Params::default();
     let (wr, qr) = ([0.92, 0.96], [4.8, 5.0]);
     let (curves, plane) = traced_wq::<Pl4>(&base, wr, qr);
-    let other = other_ends::<Pl4>(&curves);
+    let other = other_ends(Pl4::INFO, &curves);
     assert!(other.is_empty(), "{other:#?}");
     // Every codimension-two end with a second condition holds it: the fold
     // and period-doubling ends where a stick vanishes held it to 1.8e-5 to

@@ -29,7 +29,7 @@ use stickslip::orbit::admissible::ViolationKind;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
+use stickslip::Model;
 
 const STRUCTURE: &str = "P_{3_31 0_11 1_11 3_13 4_33}";
 
@@ -349,7 +349,7 @@ fn the_curves_run_starts_the_stick_end_curve() {
         .map(|m| m.margin.abs())
         .fold(f64::INFINITY, f64::min);
     assert!(onset < 1e-6, "stick-onset margin {onset:e} at the end");
-    let other = common::cycle::other_ends::<Paper>(&curves);
+    let other = common::cycle::other_ends(Paper::INFO, &curves);
     assert!(other.is_empty(), "{other:#?}");
 }
 

@@ -186,7 +186,7 @@ fn lower_end(c: &Curve) -> &CurveEnd {
 fn the_curves_end_at_the_box_or_a_codim2_point_without_creeping() {
     for t in curves() {
         assert_eq!(t.curve.ends.len(), 2, "{}: a closed curve?", t.name);
-        let other = other_ends::<Coulomb>(std::slice::from_ref(&t.curve));
+        let other = other_ends(Coulomb::INFO, std::slice::from_ref(&t.curve));
         assert!(other.is_empty(), "{}: {other:?}", t.name);
         assert!(
             t.curve.points.len() < MAX_POINTS,

@@ -46,7 +46,7 @@ use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, Termination};
 use stickslip::study::curves::{traced, CurveSet, CurvesOptions, CurvesSettings};
 use stickslip::study::sweep::{sweep, Sweep, SweepOptions};
-use stickslip::{Model, ParamSet};
+use stickslip::ParamSet;
 
 const AT: [f64; 3] = [40.0, 100.0, 150.0];
 

@@ -140,7 +140,7 @@ fn mappings_vs_taylor<M: Model>(
     r: &mut Lcg,
     what: &str,
 ) -> (f64, f64, f64) {
-    let info = M::INFO;
+    let info = M::info(p);
     let ode = Ode::of::<M>(p, j);
     let w = ode.w;
     let mut worst = (0.0f64, 0.0f64, 0.0f64);
@@ -686,7 +686,7 @@ fn resimulate<M: Model>(sim: &Simulator<M>, motion: &Motion, cycles: usize, what
         assert!(e.x.is_finite() && e.phase.is_finite(), "{what}: {e:?}");
         assert_eq!(
             e.boundary,
-            M::INFO.mappings[steps[k]].from,
+            sim.info().mappings[steps[k]].from,
             "{what}: event {n} on the wrong boundary"
         );
         let dev = ((e.phase - want).abs() / want.abs().max(1.0))

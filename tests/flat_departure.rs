@@ -19,7 +19,6 @@ use stickslip::models::stribeck8::{self, Stribeck8};
 use stickslip::orbit::admissible::violations;
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::Model;
 
 const MOTION: &str = "7_76 6_65 5_51 0_11 5_15 6_56 7_67 8_77";
 

@@ -10,7 +10,6 @@ use stickslip::dynamics::simulate::{EventKind, Location, SimOptions, Simulator};
 use stickslip::models::coulomb::{Coulomb, Params};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::output::report::Report;
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const PI: f64 = std::f64::consts::PI;

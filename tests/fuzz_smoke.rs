@@ -338,7 +338,7 @@ fn a_solution_spanning_more_than_its_cycle_is_rejected_at_once() {
     use stickslip::orbit::admissible::ViolationKind;
     use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
     use stickslip::orbit::structure::Structure;
-    use stickslip::Model;
+
     let p = Params {
         Q0: -5.8125,
         W: 3.0 * 2f64.powi(49),

@@ -34,8 +34,8 @@ fn dir(name: &str) -> PathBuf {
 
 /// The paper model's map over the axes `x` and `y` (`NAME=FROM:TO:COUNT`) into `out`.
 fn run_on(x: &str, y: &str, out: &Path, opts: MapOptions) -> Result<map::Summary, MapError> {
-    let x = GridAxis::parse_for::<Paper>(x).unwrap();
-    let y = GridAxis::parse_for::<Paper>(y).unwrap();
+    let x = GridAxis::parse_for::<Paper>(&Default::default(), x).unwrap();
+    let y = GridAxis::parse_for::<Paper>(&Default::default(), y).unwrap();
     run_map::<Paper>(&Params::default(), &x, &y, out, &opts)
 }
 
@@ -81,8 +81,8 @@ fn data_lines(text: &str) -> Vec<&str> {
 fn a_single_run_parses_back_and_agrees_with_simulation() {
     let text = reference();
     let (x, y) = (
-        GridAxis::parse_for::<Paper>(X).unwrap(),
-        GridAxis::parse_for::<Paper>(Y).unwrap(),
+        GridAxis::parse_for::<Paper>(&Default::default(), X).unwrap(),
+        GridAxis::parse_for::<Paper>(&Default::default(), Y).unwrap(),
     );
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
@@ -127,7 +127,7 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
         };
         match attractor::find(&sim, start, opts) {
             Ok(Attractor::Periodic(m)) => {
-                let label = motion_label::<Paper>(&m);
+                let label = motion_label(Paper::INFO, &m);
                 assert!(p.motions.contains(&label), "{label} not in {p:?}");
             }
             Ok(Attractor::NoMotion(_)) => assert!(p.motions.iter().any(|m| m == "NM"), "{p:?}"),
@@ -151,8 +151,9 @@ fn a_single_run_parses_back_and_agrees_with_simulation() {
 #[test]
 fn classify_point_names_reference_motions_no_motion_and_invalid_parameters() {
     let one = |w: f64, q0: f64| {
-        let x = GridAxis::parse_for::<Paper>(&format!("W={w}:{w}:1")).unwrap();
-        let y = GridAxis::parse_for::<Paper>(&format!("Q0={q0}:{q0}:1")).unwrap();
+        let x = GridAxis::parse_for::<Paper>(&Default::default(), &format!("W={w}:{w}:1")).unwrap();
+        let y =
+            GridAxis::parse_for::<Paper>(&Default::default(), &format!("Q0={q0}:{q0}:1")).unwrap();
         classify_point::<Paper>(&Params::default(), &x, &y, 0)
     };
     let p = one(3.7, 70.0);
@@ -165,8 +166,8 @@ fn classify_point_names_reference_motions_no_motion_and_invalid_parameters() {
     assert_eq!(p.status, "ok");
     assert_eq!(p.label(), "NM");
     // W = 0 is rejected by the model (W > 0): a status, not a panic.
-    let x = GridAxis::parse_for::<Paper>("W=0:1:2").unwrap();
-    let y = GridAxis::parse_for::<Paper>("Q0=70:70:1").unwrap();
+    let x = GridAxis::parse_for::<Paper>(&Default::default(), "W=0:1:2").unwrap();
+    let y = GridAxis::parse_for::<Paper>(&Default::default(), "Q0=70:70:1").unwrap();
     let p = classify_point::<Paper>(&Params::default(), &x, &y, 0);
     assert!(p.status.starts_with("invalid: "), "{p:?}");
     assert!(p.motions.is_empty());
@@ -576,7 +577,7 @@ fn e_bad_axes_and_shards_are_typed_errors() {
         ("W=3:inf:3", "NotFinite"),
         ("W=3:x:3", "NotFinite"),
     ] {
-        let e = GridAxis::parse_for::<Paper>(text).unwrap_err();
+        let e = GridAxis::parse_for::<Paper>(&Default::default(), text).unwrap_err();
         let kind = match e {
             Syntax { .. } => "Syntax",
             Count { .. } => "Count",
@@ -586,14 +587,14 @@ fn e_bad_axes_and_shards_are_typed_errors() {
         assert_eq!(kind, want, "{text}: {e}");
         assert!(e.to_string().contains(text), "{e}");
     }
-    let e = GridAxis::parse_for::<Paper>("Z=3:5:6").unwrap_err();
+    let e = GridAxis::parse_for::<Paper>(&Default::default(), "Z=3:5:6").unwrap_err();
     assert!(
         matches!(&e, Parameter { source: ParamError::Unknown { name, .. }, .. } if name == "Z"),
         "{e}"
     );
     assert!(e.to_string().contains("Q0"), "{e}");
     // The W sweep scene fixes Q0.
-    let e = GridAxis::parse_for::<SweepW>("Q0=40:80:3").unwrap_err();
+    let e = GridAxis::parse_for::<SweepW>(&Default::default(), "Q0=40:80:3").unwrap_err();
     assert!(
         matches!(
             &e,
@@ -604,7 +605,7 @@ fn e_bad_axes_and_shards_are_typed_errors() {
         ),
         "{e}"
     );
-    let x = GridAxis::parse_for::<Paper>("W=3:5:2").unwrap();
+    let x = GridAxis::parse_for::<Paper>(&Default::default(), "W=3:5:2").unwrap();
     let dir = dir("bad-axes");
     let e = run_map::<Paper>(
         &Params::default(),

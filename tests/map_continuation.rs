@@ -28,7 +28,6 @@ use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::NewtonOptions;
 use stickslip::orbit::structure::Structure;
 use stickslip::study::map::{run_map, GridAxis, MapFile, MapMethod, MapOptions};
-use stickslip::Model;
 
 fn grid() -> usize {
     std::env::var("STICKSLIP_CHECK_GRID")
@@ -38,8 +37,8 @@ fn grid() -> usize {
 }
 
 fn map(dir: &Path, n: usize, method: MapMethod) -> MapFile {
-    let x = GridAxis::parse_for::<Paper>(&format!("W=0.2:8:{n}")).unwrap();
-    let y = GridAxis::parse_for::<Paper>(&format!("Q0=0:180:{n}")).unwrap();
+    let x = GridAxis::parse_for::<Paper>(&Default::default(), &format!("W=0.2:8:{n}")).unwrap();
+    let y = GridAxis::parse_for::<Paper>(&Default::default(), &format!("Q0=0:180:{n}")).unwrap();
     let out = dir.join(format!("{method:?}.csv"));
     let _ = fs::remove_file(&out);
     let opts = MapOptions {

@@ -58,7 +58,7 @@ fn sampled_interior_margin<M: Model>(
     ends: bool,
     flat: bool,
 ) -> [Option<(f64, usize)>; 2] {
-    let dom = M::INFO.domains[j];
+    let dom = sim.info().domains[j];
     let p = sim.params();
     let h = (end - seg.phase) / n as f64;
     // The smallest margin to the lower and to the upper boundary, each a
@@ -137,7 +137,7 @@ fn sampled_conditions<M: Model>(
     n: usize,
     ends: bool,
 ) -> Vec<Violation> {
-    let info = M::INFO;
+    let info = sim.info();
     let p = sim.params();
     let m = points.len();
     let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
@@ -504,7 +504,7 @@ fn compare<M: Model>(
     let sampled = sampled_conditions(sim, structure, points, 24, false);
     tally.point_sets += 1;
     assert_eq!(fast.len(), dense.len(), "{what}: {fast:#?}\n{dense:#?}");
-    let vscale = (0..M::INFO.boundaries.len())
+    let vscale = (0..sim.info().boundaries.len())
         .map(|k| sim.velocity(k).abs())
         .fold(1.0f64, f64::max);
     for (i, (f, d)) in fast.iter().zip(&dense).enumerate() {
@@ -669,7 +669,7 @@ fn attractor<M: Model>(what: &str, sim: &Simulator<M>, rng: &mut Rng, tally: &mu
     let start = sim.start(0.0, 0.0, 0.0).expect("start");
     match attractor::find(sim, start, AttractorOptions::default()) {
         Ok(Attractor::Periodic(m)) if m.structure.len() <= 40 => {
-            let what = format!("{what}: {}", m.structure.notation(M::INFO));
+            let what = format!("{what}: {}", m.structure.notation(sim.info()));
             motion_and_perturbations(&what, sim, &m.structure, &m.points, rng, tally);
             true
         }

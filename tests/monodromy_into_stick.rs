@@ -15,7 +15,6 @@ use common::reference::references;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::{monodromy, monodromy_spectral, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
-use stickslip::Model;
 
 #[test]
 fn dp_of_a_stick_motion_is_the_reference_in_every_rotation() {

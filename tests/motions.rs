@@ -11,7 +11,6 @@ use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::motion::{solve, Motion};
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::Model;
 
 fn assert_matches(r: &Reference, motion: &Motion, how: &str) {
     let info = Paper::INFO;

@@ -15,7 +15,6 @@ mod common;
 
 use std::process::Command;
 
-use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;

@@ -40,7 +40,7 @@ fn exact(point: &SweepPoint) -> Vec<(String, Vec<(f64, f64)>)> {
         .iter()
         .filter(|m| m.stable)
         .map(|m| {
-            let info = <Paper as stickslip::Model>::INFO;
+            let info = Paper::INFO;
             let structure = Structure::parse(info, &m.structure, m.n).unwrap();
             let mut pts: Vec<SwitchingPoint> = Vec::new();
             for p in &m.points {

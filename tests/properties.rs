@@ -23,7 +23,6 @@ use stickslip::model::param::{ParamError, ParamSet};
 use stickslip::models::paper::{self, Paper, Params};
 use stickslip::orbit::attractor::{self, mapping_between, Attractor, AttractorOptions};
 use stickslip::orbit::motion::{Motion, OrbitError};
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
@@ -77,7 +76,7 @@ fn resimulate(sim: &Simulator<Paper>, motion: &Motion) -> Result<(f64, f64), Str
         after: seg.location,
     };
     for (k, e) in events.iter().enumerate() {
-        let got = mapping_between::<Paper>(&prev, e);
+        let got = mapping_between(Paper::INFO, &prev, e);
         if got != Some(steps[k]) {
             return Err(format!(
                 "segment {k} follows {:?}, the structure says {}",

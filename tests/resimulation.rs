@@ -17,7 +17,6 @@ use stickslip::models::paper::Paper;
 use stickslip::orbit::attractor::mapping_between;
 use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const TOL: f64 = 1e-10;
@@ -93,7 +92,7 @@ fn simulation_from_a_newton_solution_returns_to_it() {
         let mut prev = start_event(steps[0], &seg);
         for (k, e) in events.iter().enumerate() {
             // (a) the segment that ends at event k follows mapping k.
-            let got = mapping_between::<Paper>(&prev, e);
+            let got = mapping_between(Paper::INFO, &prev, e);
             assert_eq!(
                 got,
                 Some(steps[k]),

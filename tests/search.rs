@@ -4,7 +4,6 @@
 //! from rest lands on.
 
 use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::known::{settle, stroboscopic_states, KnownMotions, Settled};

@@ -28,11 +28,11 @@ use stickslip::Model;
 /// Every mapping of `A` (built in) and `B` (its snapshot) at a few points,
 /// bit for bit, and the same description.
 fn agree<A: Model, B: Model>(p: &A::Params, q: &B::Params) {
-    assert_eq!(A::INFO.name, B::INFO.name);
-    assert_eq!(A::INFO.mappings.len(), B::INFO.mappings.len());
-    assert_eq!(A::IDENTITY.params.len(), B::IDENTITY.params.len());
+    assert_eq!(A::info(p).name, B::info(q).name);
+    assert_eq!(A::info(p).mappings.len(), B::info(q).mappings.len());
+    assert_eq!(A::identity(p).params.len(), B::identity(q).params.len());
     assert_eq!(A::oscillator(p).frequency, B::oscillator(q).frequency);
-    for idx in 0..A::INFO.mappings.len() {
+    for idx in 0..A::info(p).mappings.len() {
         for (x0, phi0, x1, phi1) in [(0.1, 0.2, 0.3, 1.9), (-0.4, 1.0, 0.7, 4.0)] {
             let a = A::mapping(p, idx, x0, phi0, x1, phi1);
             let b = B::mapping(q, idx, x0, phi0, x1, phi1);
@@ -41,7 +41,7 @@ fn agree<A: Model, B: Model>(p: &A::Params, q: &B::Params) {
                 format!("{a:?}"),
                 format!("{b:?}"),
                 "{} mapping {idx}",
-                A::INFO.name
+                A::info(p).name
             );
         }
     }

@@ -26,7 +26,6 @@ use stickslip::orbit::admissible::{conditions, Violation, ViolationKind};
 use stickslip::orbit::attractor;
 use stickslip::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
 use stickslip::orbit::structure::Structure;
-use stickslip::Model;
 
 const MOTION: &str =
     "P_{7_76 6_65 5_51 0_11 1_12 2_23 3_34 4_44 3_43 2_32 1_21 0_11 5_15 6_56 7_67 8_77}";

@@ -6,7 +6,6 @@
 
 use stickslip::models::paper::Paper;
 use stickslip::orbit::structure::Structure;
-use stickslip::Model;
 
 /// Structure texts of every shape: the paper's notation, its variants, and
 /// each way of getting it wrong.

@@ -38,7 +38,6 @@ fn reference_transitions_are_located_within_1e_8() {
 }
 
 use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::model::Model;
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::MotionSummary;

@@ -14,7 +14,6 @@
 //! and the margin must be the closed form's inside the tolerance band.
 
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
-use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::admissible::{worst_margin, ViolationKind};
 use stickslip::orbit::motion::solve;

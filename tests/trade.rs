@@ -6,7 +6,9 @@ use stickslip::study::trade::{Measure, Trade};
 
 fn measure() -> Trade {
     let set = vec![("W".to_string(), 1.5), ("Q0".to_string(), 6.0)];
+    let model = stickslip::models::ModelRef::Name("stribeck".into());
     let m = Measure {
+        model: &model,
         set: &set,
         pieces: &[4, 8, 16, 32, 64],
         tols: &[1e-5, 1e-7, 1e-9],

@@ -572,6 +572,61 @@ fn eval_node(node: Node, v: impl Fn(Id) -> f64, params: &[f64], vars: &[f64]) ->
     }
 }
 
+/// The walk both back ends make over the nodes a function's `outputs`
+/// reach (`emit::expression` writing Rust, `jit` writing Cranelift IR):
+/// which nodes are reached, in index order (children first), and how often
+/// each is used. A node used twice or more, and every `Ec`/`Es`, is
+/// computed once into a name; a node used once is written where it is used,
+/// so that `a * (1 / b)` is a division and `a + (-b)` a subtraction there,
+/// in both back ends alike.
+#[derive(Clone, Debug)]
+pub struct Schedule {
+    reach: Vec<bool>,
+    uses: Vec<u32>,
+}
+
+impl Schedule {
+    /// The schedule of the function computing `outputs` in `g`.
+    pub fn new(g: &Graph, outputs: &[Id]) -> Self {
+        let n = outputs.iter().map(|o| o.0 as usize + 1).max().unwrap_or(0);
+        let mut reach = vec![false; n];
+        let mut uses = vec![0u32; n];
+        let mut stack: Vec<Id> = outputs.to_vec();
+        for o in outputs {
+            uses[o.0 as usize] += 1;
+        }
+        while let Some(id) = stack.pop() {
+            if reach[id.0 as usize] {
+                continue;
+            }
+            reach[id.0 as usize] = true;
+            for c in children(g.node(id)) {
+                uses[c.0 as usize] += 1;
+                stack.push(c);
+            }
+        }
+        Self { reach, uses }
+    }
+
+    /// The reached nodes, children before their parents.
+    pub fn nodes(&self) -> impl Iterator<Item = Id> + '_ {
+        (0..self.reach.len())
+            .filter(|&i| self.reach[i])
+            .map(|i| Id(i as u32))
+    }
+
+    /// Whether node `id` is computed once into a name: used twice or more,
+    /// or a homogeneous-solution function (its pair is one call). Leaves
+    /// (constants, parameters, variables) never are.
+    pub fn is_bound(&self, g: &Graph, id: Id) -> bool {
+        match g.node(id) {
+            Node::Const(_) | Node::Param(_) | Node::Var(_) => false,
+            Node::Hom(..) => true,
+            _ => self.uses.get(id.0 as usize).is_some_and(|&u| u >= 2),
+        }
+    }
+}
+
 /// The children of a node, in order.
 pub fn children(node: Node) -> Vec<Id> {
     match node {

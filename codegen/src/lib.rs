@@ -18,15 +18,21 @@
 //! 4. **equations** ([`equations`]) — the flows, mapping residuals and
 //!    Jacobians, vector fields and force criteria of each instance as graph
 //!    nodes; exact derivatives by [`expr::Graph::diff`];
-//! 5. **emit** ([`emit`]) — equations → Rust tokens; pure, it cannot fail;
-//!    then formatted with `prettyplease`.
+//! 5. a back end ([`Backend`]): **emit** ([`emit`]) — equations → Rust
+//!    tokens, pure, then formatted with `prettyplease` (the build-time
+//!    route); or, with the `jit` feature, **jit** (`jit`) — one instance's
+//!    equations → machine code by Cranelift (a model file loaded at run
+//!    time).
 //!
-//! Errors of passes 1–4 are [`Diagnostics`]; [`report`] renders them.
+//! Errors of passes 1–4 are [`Diagnostics`]; [`report`] renders them. A
+//! back end sees only a model every check has passed.
 //!
 //! Around the generated code, [`emit::registry`] writes the module wrapper both
 //! drivers use and `build.rs`'s catalogue of the compiled-in models;
 //! [`invocation`] is all of the proc-macro but its token conversion.
-#![forbid(unsafe_code)]
+// `unsafe` lives in one module, `jit::memory`, which owns the machine
+// code and calls it; everything else is safe code.
+#![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 #[cfg(feature = "generator")]
@@ -43,6 +49,8 @@ pub mod expand;
 pub mod expr;
 #[cfg(feature = "generator")]
 pub mod invocation;
+#[cfg(feature = "jit")]
+pub mod jit;
 #[cfg(feature = "generator")]
 pub mod law;
 #[cfg(feature = "generator")]
@@ -78,28 +86,69 @@ pub use emit::Options;
 #[cfg(feature = "generator")]
 pub use report::{check_file, check_source, Located, Position, Report, Severity};
 
-/// The generator, pass by pass: `parse → check → expand → equations →
-/// emit`, then formatting. `file` is the stem of a model file, whose model
-/// must be named like it.
+/// The generator, pass by pass: `parse → check → expand → equations`,
+/// shared, then one back end (Rust source at build time, machine code at
+/// run time). `file` is the stem of a model file, whose model must be named
+/// like it.
 #[cfg(feature = "generator")]
-pub(crate) fn pipeline(
+pub(crate) fn pipeline<B: Backend>(
     tokens: TokenStream,
-    options: &Options,
     file: Option<&str>,
-) -> Result<GeneratedFile, Diagnostics> {
+    backend: B,
+) -> Result<B::Output, Diagnostics> {
     let ast = parse(tokens, file)?;
     let model = check(ast)?;
-    let expanded = expand::expand(&model)?;
+    let expanded = backend.select(&model, expand::expand(&model)?)?;
     let generation = equations::build(expanded)?;
-    let tokens = emit::emit(&generation);
-    let code = emit::header(&generation.header, options) + &format(tokens)?;
-    Ok(GeneratedFile {
-        instances: instance_names(&model),
-        doc: model.docs.join("\n"),
-        module: names::ident_text(&model.name).unwrap_or_else(|| model.name.clone()),
-        name: names::bare(&model.name).to_string(),
-        code,
-    })
+    backend.emit(&model, generation)
+}
+
+/// The last pass of [`pipeline`]: what is made of a checked model's
+/// equations. A back end never sees a model a check rejected.
+#[cfg(feature = "generator")]
+pub trait Backend {
+    /// What it makes.
+    type Output;
+    /// The instances it needs of those every check has passed (all, by
+    /// default): only these get their equations.
+    fn select(
+        &self,
+        model: &Model,
+        expanded: expand::Expanded,
+    ) -> Result<expand::Expanded, Diagnostics> {
+        let _ = model;
+        Ok(expanded)
+    }
+    /// Make it from the checked `model` and its equations.
+    fn emit(
+        self,
+        model: &Model,
+        generation: equations::Generation,
+    ) -> Result<Self::Output, Diagnostics>;
+}
+
+/// The build-time back end: formatted Rust source ([`emit`]).
+#[cfg(feature = "generator")]
+pub(crate) struct RustSource<'a>(pub &'a Options);
+
+#[cfg(feature = "generator")]
+impl Backend for RustSource<'_> {
+    type Output = GeneratedFile;
+    fn emit(
+        self,
+        model: &Model,
+        generation: equations::Generation,
+    ) -> Result<GeneratedFile, Diagnostics> {
+        let tokens = emit::emit(&generation);
+        let code = emit::header(&generation.header, self.0) + &format(tokens)?;
+        Ok(GeneratedFile {
+            instances: instance_names(model),
+            doc: model.docs.join("\n"),
+            module: names::ident_text(&model.name).unwrap_or_else(|| model.name.clone()),
+            name: names::bare(&model.name).to_string(),
+            code,
+        })
+    }
 }
 
 /// Pass 1: the syntax tree; with `file`, the model must be named like it
@@ -190,7 +239,7 @@ pub(crate) fn generate_named(
     options: &Options,
     file: Option<&str>,
 ) -> Result<GeneratedFile, Diagnostics> {
-    pipeline(tokens, options, file)
+    pipeline(tokens, file, RustSource(options))
 }
 
 /// Tokenize model source text. Outside a proc-macro (build scripts, tests)

@@ -202,13 +202,22 @@ fn render_one(message: &str, file: &str, at: Position, text: Option<&str>) -> St
 /// `stickslip check`: a file that cannot be read, every error of the model,
 /// and (as a last guard) a panic of the generator come back as a [`Report`].
 pub fn check_file(path: &Path, origin: &str) -> Result<GeneratedFile, Report> {
+    let (source, stem) = read_file(path, origin)?;
+    check_text(&source, origin, stem.as_deref())
+}
+
+/// The text of the model file at `path` and its stem (the name its model
+/// must have), or the report of a file that cannot be read or is not UTF-8
+/// (located at the first bad byte): the reading [`check_file`] does, for a
+/// driver that keeps the text (a model loaded at run time is interned by it).
+pub fn read_file(path: &Path, origin: &str) -> Result<(String, Option<String>), Report> {
     let bytes = std::fs::read(path)
         .map_err(|e| Report::whole_file(origin, format!("cannot read {}: {e}", path.display())))?;
     // A byte that is not UTF-8 is located at its line and column.
     let source = crate::source::decode(&bytes)
         .map_err(|(diags, text)| Report::from_diagnostics(&diags, origin, &text))?;
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
-    check_text(&source, origin, stem.as_deref())
+    Ok((source, stem))
 }
 
 /// Like [`check_file`], from source text; `origin` names the file in messages
@@ -219,20 +228,33 @@ pub fn check_source(source: &str, origin: &str) -> Result<GeneratedFile, Report>
 
 /// Check and generate `source`; with `file`, the model must be named after it.
 fn check_text(source: &str, origin: &str, file: Option<&str>) -> Result<GeneratedFile, Report> {
+    let options = Options {
+        origin: origin.to_string(),
+    };
+    run_text(source, origin, |tokens| {
+        generate_named(tokens, &options, file)
+    })
+}
+
+/// `source` through the generator (`make`: the pipeline with a back end)
+/// under the guards every driver shares: the byte order mark dropped, the
+/// tokenizer's errors located, every error of the passes reported at
+/// `origin:line:col`, a panic reported as an internal error. The run-time
+/// back end (`jit::compile_text`) comes through here too, so a loaded model
+/// fails with the report `stickslip check` gives, word for word.
+pub(crate) fn run_text<T>(
+    source: &str,
+    origin: &str,
+    make: impl FnOnce(proc_macro2::TokenStream) -> Result<T, Diagnostics>,
+) -> Result<T, Report> {
     // Editors do not show a byte order mark: columns are counted without it.
     let source = crate::source::strip_bom(source);
     let run = || {
         let tokens = tokenize(source)?;
-        generate_named(
-            tokens,
-            &Options {
-                origin: origin.to_string(),
-            },
-            file,
-        )
+        make(tokens)
     };
     match catch_unwind(AssertUnwindSafe(run)) {
-        Ok(Ok(generated)) => Ok(generated),
+        Ok(Ok(made)) => Ok(made),
         Ok(Err(diags)) => Err(Report::from_diagnostics(&diags, origin, source)),
         Err(payload) => {
             let what = payload

@@ -8,7 +8,7 @@ use stickslip::models as catalogue;
 use stickslip::output::describe::describe as description;
 use stickslip::{Bound, Model};
 
-use crate::command::{params as checked, with_model, Command};
+use crate::command::{params as checked, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 /// The names of the compiled-in piecewise-linear models and scenes.
@@ -30,8 +30,8 @@ struct Params;
 
 impl Command for Params {
     type Output = Vec<ParamRow>;
-    fn run<M: Model>(self) -> Result<Self::Output, Failure> {
-        Ok(M::INFO
+    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, Failure> {
+        Ok(M::info(&base)
             .params
             .iter()
             .map(|p| {
@@ -56,16 +56,33 @@ impl Command for Params {
 
 /// Model `model`'s parameters, in declaration order.
 #[pyfunction]
-pub fn params(model: &str) -> PyResult<Vec<ParamRow>> {
-    Ok(with_model(model, Params)?)
+pub fn params(py: Python<'_>, model: ModelSpec) -> PyResult<Vec<ParamRow>> {
+    Ok(py.detach(|| with_model(&model, Params))?)
+}
+
+struct Name;
+
+impl Command for Name {
+    type Output = &'static str;
+    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, Failure> {
+        Ok(M::info(&base).name)
+    }
+}
+
+/// The name of the model `model` names (`paper`, `paper::sweep_w`; for a
+/// file, the model it declares): loads it, or raises `ModelError` with
+/// `stickslip check`'s report.
+#[pyfunction]
+pub fn name(py: Python<'_>, model: ModelSpec) -> PyResult<String> {
+    Ok(py.detach(|| with_model(&model, Name))?.to_string())
 }
 
 struct Describe(Vec<(String, f64)>);
 
 impl Command for Describe {
     type Output = (String, String);
-    fn run<M: Model>(self) -> Result<Self::Output, Failure> {
-        let d = description::<M>(&checked::<M>(&self.0)?);
+    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, Failure> {
+        let d = description::<M>(&checked::<M>(base, &self.0)?);
         Ok((d.to_string(), serde_json::to_string_pretty(&d)?))
     }
 }
@@ -74,10 +91,10 @@ impl Command for Describe {
 #[pyfunction]
 pub fn describe(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
 ) -> PyResult<(String, String)> {
-    Ok(py.detach(|| with_model(model, Describe(set)))?)
+    Ok(py.detach(|| with_model(&model, Describe(set)))?)
 }
 
 /// Check a model file as the build does: the model's name, or `ModelError`

@@ -8,7 +8,7 @@ use stickslip::study::diagram::{
 };
 use stickslip::Model;
 
-use crate::command::{params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 struct Diagram {
@@ -21,8 +21,8 @@ struct Diagram {
 
 impl Command for Diagram {
     type Output = (String, Vec<String>);
-    fn run<M: Model>(self) -> Result<Self::Output, Failure> {
-        let base = params::<M>(&self.set)?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, Failure> {
+        let base = params::<M>(base, &self.set)?;
         let (from, to, count) = self.range;
         let mut d =
             diagram::<M>(base, &self.name, from, to, count, self.opts).map_err(|e| match e {
@@ -46,7 +46,7 @@ impl Command for Diagram {
 #[pyo3(signature = (model, set, name, from_, to, count, transient = None, periods = None, lyapunov = None, branches = true))]
 pub fn orbit_diagram(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     name: String,
     from_: f64,
@@ -71,5 +71,5 @@ pub fn orbit_diagram(
         opts,
         branches,
     };
-    Ok(py.detach(|| with_model(model, cmd))?)
+    Ok(py.detach(|| with_model(&model, cmd))?)
 }

@@ -4,7 +4,7 @@
 
 use pyo3::prelude::*;
 use stickslip::dynamics::simulate::SimError;
-use stickslip::models::UnknownModel;
+use stickslip::models::{LookupError, UnknownModel};
 use stickslip::orbit::lyapunov::LyapunovError;
 use stickslip::orbit::motion::OrbitError;
 use stickslip::study::basins::BasinsError;
@@ -74,6 +74,14 @@ impl Failure {
 
 impl From<UnknownModel> for Failure {
     fn from(e: UnknownModel) -> Self {
+        Self::new(Kind::Model, e)
+    }
+}
+
+/// A name not compiled in, or a model file or text the generator rejects:
+/// `ModelError` with `stickslip check`'s report.
+impl From<LookupError> for Failure {
+    fn from(e: LookupError) -> Self {
         Self::new(Kind::Model, e)
     }
 }

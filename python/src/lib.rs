@@ -1,6 +1,8 @@
 //! `stickslip._native`: the library's analyses for the Python package.
 //!
-//! Every function takes a model by name (as the CLI's `--model`), the
+//! Every function takes a model as a spec, `("name", NAME, None)`,
+//! `("file", PATH, SCENE)` or `("source", TEXT, SCENE)` (as the CLI's
+//! `--model` and `--model-file`, through the library's one lookup), the
 //! parameters as `(name, value)` pairs (as `--set`), and returns what the
 //! CLI prints with `--json` (the same serializers, so the numbers agree to
 //! the last bit), which the pure-Python package (`python/stickslip/`)
@@ -26,6 +28,7 @@ use pyo3::prelude::*;
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(catalogue::models, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::params, m)?)?;
+    m.add_function(wrap_pyfunction!(catalogue::name, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::describe, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::check, m)?)?;
     m.add_function(wrap_pyfunction!(motion::simulate, m)?)?;

@@ -17,7 +17,7 @@ use stickslip::output::settled::{settle, Settled, Window};
 use stickslip::Model;
 use stickslip_codegen::structure::implied_periods;
 
-use crate::command::{params, settings, with_model, Command};
+use crate::command::{params, settings, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 /// The columns of a history: `t, Wt, x, v, a, F, domain` (domain 0: stick).
@@ -186,8 +186,8 @@ struct Simulate {
 
 impl Command for Simulate {
     type Output = Answer;
-    fn run<M: Model>(self) -> Result<Answer, Failure> {
-        let sim = Simulator::<M>::new(params::<M>(&self.set)?, SimOptions::default())?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Answer, Failure> {
+        let sim = Simulator::<M>::new(params::<M>(base, &self.set)?, SimOptions::default())?;
         let mut opts = AttractorOptions::default();
         if let Some(k) = self.periods {
             if k == 0 {
@@ -196,7 +196,7 @@ impl Command for Simulate {
             opts.max_periods = k;
         }
         let settled = settle(&sim, self.start, opts)?;
-        let title = settled.title(M::INFO.name, &settings(&self.set));
+        let title = settled.title(sim.info().name, &settings(&self.set));
         Ok(answer(sim, settled, self.start, title, Vec::new()))
     }
 }
@@ -206,7 +206,7 @@ impl Command for Simulate {
 #[pyo3(signature = (model, set, start, periods = None))]
 pub fn simulate(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     start: (f64, f64, f64),
     periods: Option<u32>,
@@ -216,7 +216,7 @@ pub fn simulate(
         start,
         periods,
     };
-    Ok(py.detach(|| with_model(model, cmd))?)
+    Ok(py.detach(|| with_model(&model, cmd))?)
 }
 
 struct Orbit {
@@ -228,9 +228,9 @@ struct Orbit {
 
 impl Command for Orbit {
     type Output = Answer;
-    fn run<M: Model>(self) -> Result<Answer, Failure> {
-        let info = M::INFO;
-        let sim = Simulator::<M>::new(params::<M>(&self.set)?, SimOptions::default())?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Answer, Failure> {
+        let sim = Simulator::<M>::new(params::<M>(base, &self.set)?, SimOptions::default())?;
+        let info = sim.info();
         let structure = Structure::parse(info, &self.structure, self.periods).map_err(|e| {
             Failure::new(
                 Kind::Structure,
@@ -295,7 +295,7 @@ impl Command for Orbit {
 #[pyo3(signature = (model, set, structure, periods = None, guess = None))]
 pub fn orbit(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     structure: String,
     periods: Option<u32>,
@@ -309,5 +309,5 @@ pub fn orbit(
         periods,
         guess,
     };
-    Ok(py.detach(|| with_model(model, cmd))?)
+    Ok(py.detach(|| with_model(&model, cmd))?)
 }

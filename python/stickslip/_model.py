@@ -1,4 +1,5 @@
-"""``Model``: a compiled-in model, chosen by name, and the analyses on it."""
+"""``Model``: a compiled-in model chosen by name, or a model file or text
+loaded and compiled at run time, and the analyses on it."""
 
 from __future__ import annotations
 
@@ -67,25 +68,59 @@ def _motion(answer: tuple) -> Motion:
 
 
 class Model:
-    """A compiled-in piecewise-linear model (``"paper"``, or ``"model::scene"``).
+    """A piecewise-linear model: compiled in (``Model("paper")``, or
+    ``"model::scene"``), or a model file or text loaded and compiled to
+    machine code at run time (:meth:`from_file`, :meth:`from_source`): the
+    same analyses on either, no Rust toolchain needed for the second.
 
     Parameters are keyword arguments of every analysis (``W=5, Q0=70``); the
     others keep their defaults (``params``).
     """
 
     def __init__(self, name: str = "paper") -> None:
-        self.name = str(name)
-        rows = _native.params(self.name)  # raises ModelError for an unknown name
+        self._load(("name", str(name), None))
+
+    @classmethod
+    def from_file(cls, path: Union[str, "os.PathLike[str]"], scene: Optional[str] = None) -> "Model":
+        """The model of the file at ``path`` (or its scene ``scene``),
+        checked as ``stickslip check`` checks it and compiled to machine code
+        (once per distinct file content in the process); a file the checks
+        reject raises :class:`~stickslip.errors.ModelError` with every error
+        at ``file:line:col``."""
+        model = cls.__new__(cls)
+        model._load(("file", os.fspath(path), None if scene is None else str(scene)))
+        return model
+
+    @classmethod
+    def from_source(cls, text: str, scene: Optional[str] = None) -> "Model":
+        """The model written in ``text`` (a model file's content; ``scene``
+        for one of its scenes), as :meth:`from_file` loads a file; errors are
+        located at ``<source>:line:col``."""
+        model = cls.__new__(cls)
+        model._load(("source", str(text), None if scene is None else str(scene)))
+        return model
+
+    def _load(self, spec: Tuple[str, str, Optional[str]]) -> None:
+        self._spec = spec
+        # Raises ModelError for an unknown name or a rejected file.
+        self.name: str = _native.name(spec)
+        rows = _native.params(spec)
         self.params: Dict[str, Param] = {
             r[0]: Param(r[0], r[1], tuple(tuple(b) for b in r[2]), r[3], r[4]) for r in rows
         }
 
     def __repr__(self) -> str:
-        return f"Model({self.name!r})"
+        kind, what, scene = self._spec
+        if kind == "name":
+            return f"Model({what!r})"
+        scene_arg = "" if scene is None else f", scene={scene!r}"
+        if kind == "file":
+            return f"Model.from_file({what!r}{scene_arg})"
+        return f"Model.from_source(<{self.name}>{scene_arg})"
 
     def describe(self, **params: Number) -> Description:
         """Domains, boundaries and mappings at the parameters (``stickslip describe``)."""
-        text, data = _native.describe(self.name, _pairs(params))
+        text, data = _native.describe(self._spec, _pairs(params))
         return Description(text, json.loads(data))
 
     def simulate(
@@ -98,7 +133,7 @@ class Model:
         name and refine it (``stickslip simulate``); at most ``periods``
         forcing periods (default 3000)."""
         x, v, wt = _start(start)
-        return _motion(_native.simulate(self.name, _pairs(params), (x, v, wt), periods))
+        return _motion(_native.simulate(self._spec, _pairs(params), (x, v, wt), periods))
 
     def orbit(
         self,
@@ -120,7 +155,7 @@ class Model:
                 raise InputError(f"guess {tuple(guess)!r}: expected (Wt, x)")
             g = (vals[0], vals[1])
         n = None if periods is None else int(periods)
-        return _motion(_native.orbit(self.name, _pairs(params), str(structure), n, g))
+        return _motion(_native.orbit(self._spec, _pairs(params), str(structure), n, g))
 
     def sweep(
         self,
@@ -147,7 +182,7 @@ class Model:
         if grid.ndim != 1:
             raise InputError(f"values: expected a 1-d sequence, got shape {grid.shape}")
         data = _native.sweep(
-            self.name, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable),
+            self._spec, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable),
             max_mappings, max_period,
         )
         return Sweep(json.loads(data))
@@ -170,7 +205,7 @@ class Model:
         ``lyapunov`` periods of the largest exponent at each value; with
         ``branches``, the sweep's periodic branches at the section."""
         data, notes = _native.orbit_diagram(
-            self.name, _pairs(fixed), str(param), float(start), float(stop), int(count),
+            self._spec, _pairs(fixed), str(param), float(start), float(stop), int(count),
             transient, periods, lyapunov, bool(branches),
         )
         for note in notes:
@@ -200,7 +235,7 @@ class Model:
         ya = _axis("y", y, named=True)
         with _output(out, "map.csv") as path:
             data, labels = _native.map(
-                self.name, _pairs(fixed), xa, ya, path, str(method), bool(resume), bool(progress)
+                self._spec, _pairs(fixed), xa, ya, path, str(method), bool(resume), bool(progress)
             )
             result = json.loads(data)
         result["file"] = None if out is None else str(out)
@@ -240,7 +275,7 @@ class Model:
         edges too, where every curve that leaves the box crosses (default
         True; ``False`` is ``--no-edges``)."""
         data = _native.curves(
-            self.name,
+            self._spec,
             _pairs(fixed),
             _side("x", x),
             _side("y", y),
@@ -268,7 +303,7 @@ class Model:
         (default 1000), then ``periods`` accumulated (default 10000; 10 or
         more for an error estimate)."""
         data = _native.lyapunov(
-            self.name,
+            self._spec,
             _pairs(params),
             _start(start),
             _count("transient", transient, 0),
@@ -310,7 +345,7 @@ class Model:
             raise InputError(f"phase {phase!r}: expected a number") from None
         with _output(out, "basins.csv") as path:
             data, xs, vs, ids, exps = _native.basins(
-                self.name,
+                self._spec,
                 _pairs(params),
                 xa,
                 va,

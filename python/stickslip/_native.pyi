@@ -1,7 +1,8 @@
 """Type stubs of the extension module ``stickslip._native`` (Rust, PyO3).
 
-Every function takes the model by name and the parameters as ``(name,
-value)`` pairs, and returns what the CLI prints with ``--json`` (as text);
+Every function takes the model as a spec, ``("name", NAME, None)``,
+``("file", PATH, SCENE)`` or ``("source", TEXT, SCENE)``, and the parameters
+as ``(name, value)`` pairs, and returns what the CLI prints with ``--json`` (as text);
 the pure-Python package wraps it. Failures raise ``stickslip.errors`` types.
 """
 
@@ -11,14 +12,16 @@ import numpy as np
 import numpy.typing as npt
 
 Pairs = Sequence[Tuple[str, float]]
+ModelSpec = Tuple[str, str, Optional[str]]
 Floats = npt.NDArray[np.float64]
 Ints = npt.NDArray[np.int64]
 # t, Wt, x, v, a, F (float64) and domain (int64), moved from Rust without a copy.
 Columns = Tuple[Floats, Floats, Floats, Floats, Floats, Floats, Ints]
 
 def models() -> List[str]: ...
-def params(model: str) -> List[Tuple[str, float, List[Tuple[str, float]], str, bool]]: ...
-def describe(model: str, set: Pairs) -> Tuple[str, str]: ...
+def params(model: ModelSpec) -> List[Tuple[str, float, List[Tuple[str, float]], str, bool]]: ...
+def name(model: ModelSpec) -> str: ...
+def describe(model: ModelSpec, set: Pairs) -> Tuple[str, str]: ...
 def check(path: str) -> str: ...
 
 class Trajectory:
@@ -26,17 +29,17 @@ class Trajectory:
     def title(self) -> str: ...
 
 def simulate(
-    model: str, set: Pairs, start: Tuple[float, float, float], periods: Optional[int] = None
+    model: ModelSpec, set: Pairs, start: Tuple[float, float, float], periods: Optional[int] = None
 ) -> Tuple[str, Optional[str], List[str], Trajectory]: ...
 def orbit(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     structure: str,
     periods: Optional[int] = None,
     guess: Optional[Tuple[float, float]] = None,
 ) -> Tuple[str, Optional[str], List[str], Trajectory]: ...
 def sweep(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     name: str,
     values: Sequence[float],
@@ -47,7 +50,7 @@ def sweep(
     max_period: Optional[int] = None,
 ) -> str: ...
 def orbit_diagram(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     name: str,
     from_: float,
@@ -63,7 +66,7 @@ def orbit_diagram(
 Axis = Tuple[str, float, float, int]
 
 def map(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     x: Axis,
     y: Axis,
@@ -75,7 +78,7 @@ def map(
     """The map as JSON (``Map.to_dict()`` without ``file``), and each point's label."""
     ...
 def curves(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     x: Tuple[str, float, float],
     y: Tuple[str, float, float],
@@ -89,14 +92,14 @@ def curves(
     edges: bool = True,
 ) -> str: ...
 def lyapunov(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     start: Tuple[float, float, float],
     transient: Optional[int] = None,
     periods: Optional[int] = None,
 ) -> str: ...
 def basins(
-    model: str,
+    model: ModelSpec,
     set: Pairs,
     x: Tuple[float, float, int],
     v: Tuple[float, float, int],

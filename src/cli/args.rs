@@ -1,15 +1,47 @@
-//! Arguments several subcommands share: `--set NAME=VALUE`, number lists,
-//! `--param NAME=from:to:count`, the model lookup, the `--plot` path check
-//! and the output options of `orbit` and `simulate`.
+//! Arguments several subcommands share: the model (`--model NAME`, or
+//! `--model-file PATH --scene S`) and its lookup, `--set NAME=VALUE`,
+//! number lists, `--param NAME=from:to:count`, the `--plot` path check and
+//! the output options of `orbit` and `simulate`.
 
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+use stickslip::models::ModelRef;
 use stickslip::output::figure::Format;
-use stickslip::{models, Model, ModelVisitor, ParamSet};
+use stickslip::{Model, ModelVisitor, ParamSet};
 
 use super::error::CliError;
+
+/// Which model: compiled in, by name, or a model file loaded and compiled
+/// to machine code now (no build).
+#[derive(Args, Clone)]
+pub struct ModelArgs {
+    /// A compiled-in model (`paper`), or `model::scene` [default: paper;
+    /// stribeck for `trade`].
+    #[arg(long, value_name = "NAME", conflicts_with = "model_file")]
+    model: Option<String>,
+    /// A model file (`my_law.ssm`) to load instead: checked as `stickslip
+    /// check` checks it and compiled to machine code in milliseconds.
+    #[arg(long, value_name = "PATH")]
+    model_file: Option<PathBuf>,
+    /// With `--model-file`: one of its model's scenes.
+    #[arg(long, value_name = "SCENE", requires = "model_file")]
+    scene: Option<String>,
+}
+
+impl ModelArgs {
+    /// The model named, `default` when none is.
+    pub fn lookup(&self, default: &str) -> ModelRef {
+        match &self.model_file {
+            Some(path) => ModelRef::File {
+                path: path.clone(),
+                scene: self.scene.clone(),
+            },
+            None => ModelRef::Name(self.model.clone().unwrap_or_else(|| default.to_string())),
+        }
+    }
+}
 
 /// Output options of `orbit` and `simulate`.
 #[derive(Args, Clone)]
@@ -68,10 +100,10 @@ impl Assignments {
         &self.0
     }
 
-    /// Model `M`'s parameters: its defaults with these applied, checked.
-    pub fn params<M: Model>(&self) -> Result<M::Params, CliError> {
+    /// Model `M`'s parameters: its defaults `base` with these applied, checked.
+    pub fn params<M: Model>(&self, base: M::Params) -> Result<M::Params, CliError> {
         let pairs: Vec<(&str, f64)> = self.0.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        Ok(M::Params::from_pairs(M::INFO, &pairs)?)
+        Ok(base.with_pairs(M::identity(&base), &pairs)?)
     }
 }
 
@@ -151,8 +183,8 @@ impl ParamRange {
 pub trait WithModel {
     /// What it returns.
     type Output;
-    /// Run with model `M`.
-    fn run<M: Model>(self) -> Result<Self::Output, CliError>;
+    /// Run with model `M`, whose defaults are `base`.
+    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, CliError>;
 }
 
 /// The registry's visitor for a [`WithModel`] command: piecewise models only
@@ -161,17 +193,23 @@ struct Piecewise<C>(C);
 
 impl<C: WithModel> ModelVisitor for Piecewise<C> {
     type Output = Result<C::Output, CliError>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
-        Some(self.0.run::<M>())
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        Some(self.0.run::<M>(base))
     }
 }
 
-/// Run `command` with the compiled-in model `name` (`paper`, or `model::scene`).
-pub fn with_model<C: WithModel>(name: &str, command: C) -> Result<C::Output, CliError> {
-    models::visit(name, Piecewise(command)).unwrap_or_else(|| {
-        Err(CliError::UnknownModel(models::UnknownModel {
-            name: name.to_string(),
-        }))
+/// Run `command` with the model `model` names: compiled in (`paper`, or
+/// `model::scene`) or loaded from a file.
+pub fn with_model<C: WithModel>(model: &ModelRef, command: C) -> Result<C::Output, CliError> {
+    model.visit(Piecewise(command))?.unwrap_or_else(|| {
+        Err(match model {
+            ModelRef::Name(name) => {
+                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
+            }
+            _ => CliError::SmoothFile {
+                model: model.to_string(),
+            },
+        })
     })
 }
 

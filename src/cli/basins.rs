@@ -11,16 +11,15 @@ use stickslip::study::basins::{run_basins, BasinOptions, BasinSettings, Basins};
 use stickslip::study::map::GridAxis;
 use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Options of `basins`.
 #[derive(Args, Clone)]
 pub struct BasinsArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// The parameters, e.g. `--set W=3.948,Q0=70`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
@@ -70,7 +69,7 @@ pub struct BasinsArgs {
 /// Compute the basins (or resume them), draw them, summarize them.
 pub fn run(args: BasinsArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
-    let model = args.model.clone();
+    let model = args.model.lookup("paper");
     with_model(&model, BasinsCmd { args })
 }
 
@@ -80,10 +79,10 @@ struct BasinsCmd {
 
 impl WithModel for BasinsCmd {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
         let a = &self.args;
         let set = Assignments::parse(&a.set)?;
-        let params = set.params::<M>()?;
+        let params = set.params::<M>(base)?;
         let x = GridAxis::parse(&a.x)?;
         let v = GridAxis::parse(&a.y)?;
         let settings = BasinSettings {

@@ -10,16 +10,15 @@ use stickslip::output::figure::regime::plot_regimes;
 use stickslip::study::curves::{curves_with, regions, CurvesOptions, CurvesSettings};
 use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Arguments of `curves`.
 #[derive(Args, Clone)]
 pub struct CurvesArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// The horizontal parameter and its range, `NAME=from:to` (e.g. `W=0.2:8`).
     #[arg(long)]
     x: String,
@@ -82,7 +81,7 @@ pub struct CurvesArgs {
 /// The curves as text or JSON, and the regime map.
 pub fn run(args: CurvesArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
-    let model = args.model.clone();
+    let model = args.model.lookup("paper");
     with_model(&model, CurvesCmd { args })
 }
 
@@ -119,9 +118,9 @@ fn parse_lines(option: &'static str, text: &str) -> Result<(String, Vec<f64>), C
 
 impl WithModel for CurvesCmd {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
-        let base = set.params::<M>()?;
+        let base = set.params::<M>(base)?;
         let mut opts = CurvesOptions {
             x: parse_range("--x", &self.args.x)?,
             y: parse_range("--y", &self.args.y)?,
@@ -156,7 +155,7 @@ impl WithModel for CurvesCmd {
         let found = curves_with::<M>(&base, &opts, &settings)?;
         if let Some(path) = &self.args.plot {
             let cut = regions::<M>(&base, &found, 400, 300);
-            let title = format!("{} regime map ({set})", M::INFO.name);
+            let title = format!("{} regime map ({set})", M::info(&base).name);
             plot_regimes(&found, &cut, &title, path).map_err(CliError::Figure)?;
         }
         let stdout = if self.args.json {

@@ -4,16 +4,15 @@ use clap::Args;
 use stickslip::output::describe::describe;
 use stickslip::Model;
 
-use super::args::{with_model, Assignments, WithModel};
+use super::args::{with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Arguments of `describe`.
 #[derive(Args)]
 pub struct DescribeArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// Parameter values, e.g. `--set W=3.7,Q0=70`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
@@ -26,7 +25,7 @@ pub struct DescribeArgs {
 pub fn run(args: DescribeArgs) -> Result<Outcome, CliError> {
     let set = Assignments::parse(&args.set)?;
     let json = args.json;
-    with_model(&args.model, Describe { set, json }).map(Outcome::ok)
+    with_model(&args.model.lookup("paper"), Describe { set, json }).map(Outcome::ok)
 }
 
 struct Describe {
@@ -36,8 +35,8 @@ struct Describe {
 
 impl WithModel for Describe {
     type Output = String;
-    fn run<M: Model>(self) -> Result<String, CliError> {
-        let p = self.set.params::<M>()?;
+    fn run<M: Model>(self, base: M::Params) -> Result<String, CliError> {
+        let p = self.set.params::<M>(base)?;
         let d = describe::<M>(&p);
         if self.json {
             Ok(serde_json::to_string_pretty(&d)?)

@@ -11,16 +11,15 @@ use stickslip::study::diagram::{
 };
 use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, ParamRange, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, ParamRange, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Arguments of `orbit-diagram`.
 #[derive(Args, Clone)]
 pub struct DiagramArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// The parameter and its grid, `NAME=from:to:count` (e.g. `W=3.9:4:200`).
     #[arg(long)]
     param: String,
@@ -50,7 +49,7 @@ pub struct DiagramArgs {
 /// The diagram as text or JSON, and its figure.
 pub fn run(args: DiagramArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
-    let model = args.model.clone();
+    let model = args.model.lookup("paper");
     with_model(&model, DiagramCmd { args })
 }
 
@@ -60,12 +59,12 @@ struct DiagramCmd {
 
 impl WithModel for DiagramCmd {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
         let a = &self.args;
         let set = Assignments::parse(&a.set)?;
         let range = ParamRange::parse(&a.param)?;
         set.leave_free(&range.name, "--param")?;
-        let base = set.params::<M>()?;
+        let base = set.params::<M>(base)?;
         let opts = DiagramOptions {
             transient: a.transient,
             periods: a.periods,
@@ -81,7 +80,7 @@ impl WithModel for DiagramCmd {
         if let Some(plot) = &a.plot {
             let title = format!(
                 "{}: orbit diagram over {}, {}",
-                M::INFO.name,
+                M::info(&base).name,
                 range.name,
                 set
             );

@@ -21,6 +21,25 @@ pub enum CliError {
     /// `--model` names no compiled-in model.
     #[error(transparent)]
     UnknownModel(#[from] models::UnknownModel),
+    /// `--model-file`: a file the generator rejects (`stickslip check`'s report).
+    #[error("{0}")]
+    Load(#[from] stickslip::model::loaded::LoadError),
+    /// `--model-file` of a model with a smooth law, for a command that
+    /// takes a piecewise-linear one.
+    #[error(
+        "`{model}` has a smooth law: give one of its piecewise-linear scenes with `--scene` \
+         (a `pieces: N` scene), or use it with `trade`"
+    )]
+    SmoothFile {
+        /// The file.
+        model: String,
+    },
+    /// `trade --model-file` of a piecewise-linear model.
+    #[error("`{model}` is piecewise-linear: `trade` takes a model with a smooth `law`")]
+    NotSmoothFile {
+        /// The file.
+        model: String,
+    },
     /// `trade --model` names no compiled-in model with a smooth law.
     #[error(
         "`{name}` is not a model with a smooth law; compiled-in: {}",
@@ -200,4 +219,22 @@ pub enum CliError {
 /// `a, b, c`.
 fn names<'a>(names: impl Iterator<Item = &'a str>) -> String {
     names.collect::<Vec<_>>().join(", ")
+}
+
+/// A model that cannot be found: a name not compiled in, or a file the
+/// generator rejects.
+impl From<stickslip::models::LookupError> for CliError {
+    fn from(e: stickslip::models::LookupError) -> Self {
+        match e {
+            stickslip::models::LookupError::Unknown(e) => CliError::UnknownModel(e),
+            stickslip::models::LookupError::Load(e) => CliError::Load(e),
+        }
+    }
+}
+
+impl CliError {
+    /// Whether this is a model file's report (each error headed `error:`).
+    pub fn is_report(&self) -> bool {
+        matches!(self, CliError::Load(_))
+    }
 }

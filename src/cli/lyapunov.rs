@@ -7,16 +7,15 @@ use stickslip::orbit::lyapunov::{spectrum, LyapunovError, LyapunovOptions};
 use stickslip::output::lyapunov_report::LyapunovReport;
 use stickslip::Model;
 
-use super::args::{parse_numbers, with_model, Assignments, WithModel};
+use super::args::{parse_numbers, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Arguments of `lyapunov`.
 #[derive(Args)]
 pub struct LyapunovArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// Parameter values, e.g. `--set W=2.38,Q0=3`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
@@ -55,7 +54,7 @@ pub fn run(args: LyapunovArgs) -> Result<Outcome, CliError> {
         },
         json: args.json,
     };
-    with_model(&args.model, job)
+    with_model(&args.model.lookup("paper"), job)
 }
 
 struct Lyapunov {
@@ -67,8 +66,8 @@ struct Lyapunov {
 
 impl WithModel for Lyapunov {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
-        let p = self.set.params::<M>()?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
+        let p = self.set.params::<M>(base)?;
         let sim = Simulator::<M>::new(p, SimOptions::default())?;
         let [x, v, phase] = self.from;
         let s = spectrum(&sim, (x, v, phase), self.opts).map_err(|e| match e {
@@ -82,7 +81,7 @@ impl WithModel for Lyapunov {
         let set = &self.set;
         let head = format!(
             "{}: from (x, v, W t) = ({x}, {v}, {phase}) ({set})\n",
-            M::INFO.name
+            M::info(&p).name
         );
         Ok(Outcome::ok(head + &report.text(&s)))
     }

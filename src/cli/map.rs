@@ -10,16 +10,15 @@ use stickslip::study::curves::{curves, CurvesOptions};
 use stickslip::study::map::{run_map, GridAxis, MapFile, MapMethod, MapOptions, Shard};
 use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Options of `map`.
 #[derive(Args, Clone)]
 pub struct MapArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// Horizontal axis, `NAME=from:to:count` (e.g. `W=0.2:8:100`).
     #[arg(long)]
     x: String,
@@ -58,7 +57,7 @@ pub struct MapArgs {
 /// Compute the map (or resume it, or one shard), draw it, summarize it.
 pub fn run(args: MapArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
-    let model = args.model.clone();
+    let model = args.model.lookup("paper");
     with_model(&model, MapCmd { args })
 }
 
@@ -68,13 +67,13 @@ struct MapCmd {
 
 impl WithModel for MapCmd {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
-        let x = GridAxis::parse_for::<M>(&self.args.x)?;
-        let y = GridAxis::parse_for::<M>(&self.args.y)?;
+        let x = GridAxis::parse_for::<M>(&base, &self.args.x)?;
+        let y = GridAxis::parse_for::<M>(&base, &self.args.y)?;
         set.leave_free(&x.name, "--x")?;
         set.leave_free(&y.name, "--y")?;
-        let base = set.params::<M>()?;
+        let base = set.params::<M>(base)?;
         let shard = self.args.shard.as_deref().map(Shard::parse).transpose()?;
         let opts = MapOptions {
             resume: self.args.resume,

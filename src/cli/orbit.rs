@@ -13,16 +13,17 @@ use stickslip::output::report::Report;
 use stickslip::Model;
 use stickslip_codegen::structure::implied_periods;
 
-use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
+use super::args::{
+    check_plot_path, parse_numbers, with_model, Assignments, ModelArgs, OutputArgs, WithModel,
+};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 
 /// Arguments of `orbit`.
 #[derive(Args)]
 pub struct OrbitArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// The structure, e.g. `P_{3_31 0_11 3_13 4_33}` (applied right to left).
     #[arg(long)]
     structure: String,
@@ -60,7 +61,7 @@ pub fn run(args: OrbitArgs) -> Result<Outcome, CliError> {
         guess,
         output: args.output,
     };
-    with_model(&args.model, orbit)
+    with_model(&args.model.lookup("paper"), orbit)
 }
 
 struct Orbit {
@@ -73,9 +74,9 @@ struct Orbit {
 
 impl WithModel for Orbit {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
-        let info = M::INFO;
-        let p = self.set.params::<M>()?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
+        let p = self.set.params::<M>(base)?;
+        let info = M::info(&p);
         let sim = Simulator::<M>::new(p, SimOptions::default())?;
         let structure =
             Structure::parse(info, &self.structure, self.periods).map_err(|source| {

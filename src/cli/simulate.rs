@@ -8,16 +8,17 @@ use stickslip::orbit::attractor::AttractorOptions;
 use stickslip::output::settled::settle;
 use stickslip::Model;
 
-use super::args::{check_plot_path, parse_numbers, with_model, Assignments, OutputArgs, WithModel};
+use super::args::{
+    check_plot_path, parse_numbers, with_model, Assignments, ModelArgs, OutputArgs, WithModel,
+};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 
 /// Arguments of `simulate`.
 #[derive(Args)]
 pub struct SimulateArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// Parameter values, e.g. `--set W=5,Q0=70`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
@@ -45,7 +46,7 @@ pub fn run(args: SimulateArgs) -> Result<Outcome, CliError> {
         periods: args.periods,
         output: args.output,
     };
-    with_model(&args.model, simulate)
+    with_model(&args.model.lookup("paper"), simulate)
 }
 
 struct Simulate {
@@ -57,8 +58,8 @@ struct Simulate {
 
 impl WithModel for Simulate {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
-        let p = self.set.params::<M>()?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
+        let p = self.set.params::<M>(base)?;
         let sim = Simulator::<M>::new(p, SimOptions::default())?;
         let [x, v, phase] = self.from;
         let mut opts = AttractorOptions::default();
@@ -70,7 +71,7 @@ impl WithModel for Simulate {
         }
         let set = &self.set;
         let settled = settle(&sim, (x, v, phase), opts)?;
-        let title = settled.title(M::INFO.name, &set.to_string());
+        let title = settled.title(M::info(&p).name, &set.to_string());
         let history = || {
             settled
                 .history(&sim, (x, v, phase), SAMPLES_PER_PERIOD)?

@@ -9,16 +9,15 @@ use stickslip::output::sweep_table;
 use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, ParamRange, WithModel};
+use super::args::{check_plot_path, with_model, Assignments, ModelArgs, ParamRange, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Arguments of `sweep`.
 #[derive(Args, Clone)]
 pub struct SweepArgs {
-    /// Model name (`paper`), or `model::scene`.
-    #[arg(long, default_value = "paper")]
-    model: String,
+    #[command(flatten)]
+    model: ModelArgs,
     /// The swept parameter and its grid, `NAME=from:to:count` (e.g. `W=0.2:9:200`).
     #[arg(long)]
     param: String,
@@ -82,7 +81,7 @@ enum ViewArg {
 /// The sweep as text or JSON, and its figure.
 pub fn run(args: SweepArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
-    let model = args.model.clone();
+    let model = args.model.lookup("paper");
     with_model(&model, SweepCmd { args })
 }
 
@@ -92,7 +91,7 @@ struct SweepCmd {
 
 impl WithModel for SweepCmd {
     type Output = Outcome;
-    fn run<M: Model>(self) -> Result<Outcome, CliError> {
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
         let set = Assignments::parse(&self.args.set)?;
         let ParamRange {
             name,
@@ -101,7 +100,7 @@ impl WithModel for SweepCmd {
             count,
         } = ParamRange::parse(&self.args.param)?;
         set.leave_free(&name, "--param")?;
-        let base = set.params::<M>()?;
+        let base = set.params::<M>(base)?;
         let opts = SweepOptions {
             starts: self.args.starts,
             every: self.args.every,
@@ -112,7 +111,7 @@ impl WithModel for SweepCmd {
         let sw = sweep::<M>(base, &name, from, to, count, opts)?;
         let unstable = !self.args.no_unstable;
         if let Some(path) = &self.args.plot {
-            let title = format!("{} sweep of {name} ({set})", M::INFO.name);
+            let title = format!("{} sweep of {name} ({set})", M::info(&base).name);
             let view = match self.args.view {
                 ViewArg::Diagram => View::Diagram,
                 ViewArg::Frc => View::Frc,

@@ -4,21 +4,22 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use stickslip::models;
+use stickslip::models::ModelRef;
 use stickslip::output::figure::trade::plot_trade;
 use stickslip::output::text::trade_table;
 use stickslip::study::trade::Measure;
 
-use super::args::{check_plot_path, Assignments};
+use super::args::{check_plot_path, Assignments, ModelArgs};
 use super::error::CliError;
 use super::outcome::Outcome;
 
 /// Arguments of `trade`.
 #[derive(Args)]
 pub struct TradeArgs {
-    /// A model with a smooth `law` (e.g. `stribeck`).
-    #[arg(long, default_value = "stribeck")]
-    model: String,
+    /// A model with a smooth `law`: `--model NAME` (default `stribeck`) or
+    /// `--model-file PATH`.
+    #[command(flatten)]
+    model: ModelArgs,
     /// Parameter values (those free in the piecewise scenes), e.g. `--set W=1.5,Q0=6`.
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
@@ -43,14 +44,19 @@ pub struct TradeArgs {
 pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
     let set = Assignments::parse(&args.set)?;
+    let model = args.model.lookup("stribeck");
     let measure = Measure {
+        model: &model,
         set: set.pairs(),
         pieces: &args.pieces,
         tols: &args.tol,
         reference_tol: args.reference_tol,
     };
-    let trade = models::visit(&args.model, measure).ok_or_else(|| CliError::NotSmooth {
-        name: args.model.clone(),
+    let trade = model.visit(measure)?.ok_or_else(|| match &model {
+        ModelRef::Name(name) => CliError::NotSmooth { name: name.clone() },
+        _ => CliError::NotSmoothFile {
+            model: model.to_string(),
+        },
     })??;
     if let Some(path) = &args.plot {
         plot_trade(&trade, path).map_err(CliError::Figure)?;

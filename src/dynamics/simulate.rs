@@ -18,7 +18,7 @@ use serde::Serialize;
 use crate::dynamics::crossing::{first_root, touch_extremum, Probe, Root, RootKind};
 use crate::dynamics::response::Response;
 use crate::model::param::{ParamError, ParamSet};
-use crate::model::{Coefficients, Model, Oscillator};
+use crate::model::{Coefficients, Model, ModelInfo, Oscillator};
 
 /// Where the motion is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -247,7 +247,7 @@ impl<M: Model> Simulator<M> {
     /// A simulator at parameters `p` (checked).
     pub fn new(p: M::Params, opts: SimOptions) -> Result<Self, SimError> {
         p.check()?;
-        let info = M::INFO;
+        let info = M::info(&p);
         let coefficients = (0..info.domains.len())
             .map(|j| M::coefficients(&p, j))
             .collect();
@@ -277,7 +277,7 @@ impl<M: Model> Simulator<M> {
         for (k, v) in self.velocities.iter_mut().enumerate() {
             *v = M::boundary_velocity(&p, k);
         }
-        self.stick = M::INFO
+        self.stick = M::info(&p)
             .stick_boundary()
             .and_then(|k| M::static_bound(&p).map(|s| (k, s)));
         self.osc = M::oscillator(&p);
@@ -288,6 +288,11 @@ impl<M: Model> Simulator<M> {
     /// The parameters.
     pub fn params(&self) -> &M::Params {
         &self.p
+    }
+
+    /// The model's description ([`Model::info`] at these parameters).
+    pub fn info(&self) -> &'static ModelInfo {
+        M::info(&self.p)
     }
 
     /// The oscillator.
@@ -345,7 +350,7 @@ impl<M: Model> Simulator<M> {
         if !(x.is_finite() && v.is_finite() && phase.is_finite()) {
             return Err(SimError::BadStart { x, v, phase });
         }
-        let info = M::INFO;
+        let info = self.info();
         let location = match self.velocities.iter().position(|&vb| vb == v) {
             None => Location::Domain(
                 info.domains
@@ -399,7 +404,7 @@ impl<M: Model> Simulator<M> {
         let w = self.osc.frequency;
         match seg.location {
             Location::Domain(j) => {
-                let info = M::INFO.domains[j];
+                let info = self.info().domains[j];
                 let co = self.coefficients[j];
                 let lo = info.lower.map(|k| self.velocities[k]);
                 let hi = info.upper.map(|k| self.velocities[k]);

@@ -144,6 +144,9 @@ pub struct Identity {
     pub params: &'static [ParamInfo],
     /// Indices into `params` of the free ones, in the order of the `Params` fields.
     pub free: &'static [usize],
+    /// For a model loaded at run time, the content hash of its model file
+    /// (`model::loaded::content_hash`); `None` for a compiled-in model.
+    pub source_hash: Option<u64>,
 }
 
 /// Static description of a generated piecewise-linear model or scene: its

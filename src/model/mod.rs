@@ -3,10 +3,10 @@
 //! Every model file generates one family of types:
 //!
 //! ```text
-//!                    FrictionOscillator      Params, IDENTITY: &Identity, oscillator()
+//!                    FrictionOscillator      Params, identity(p), oscillator(p)
 //!                    /                \
 //!               Model                  SmoothModel
-//!   INFO: &ModelInfo, flows,          INFO: &SmoothInfo, belt(),
+//!   info(p): &ModelInfo, flows,       info(p): &SmoothInfo, belt(),
 //!   mappings, fields, forces          static_bound(), kinetic()
 //! ```
 //!
@@ -53,13 +53,17 @@
 //! * [`piecewise`] — the [`Model`] trait every piecewise-linear model implements;
 //! * [`smooth`] — the [`SmoothModel`] trait of models with a smooth law;
 //! * [`registry`] — the registry's [`Entry`] and [`ModelVisitor`];
-//! * [`homogeneous`] — the closed-form homogeneous solution the generated flows call.
+//! * [`homogeneous`] — the closed-form homogeneous solution the generated flows call;
+//! * [`loaded`] — models loaded at run time: a model file compiled to
+//!   machine code by the generator's run-time back end, behind the same
+//!   traits ([`loaded::Loaded`], [`loaded::LoadedSmooth`]).
 //!
 //! The compiled-in models themselves are [`crate::models`]. Nothing here
 //! depends on a layer above (dynamics, orbit, study, output).
 
 pub mod homogeneous;
 pub mod info;
+pub mod loaded;
 pub mod oscillator;
 pub mod param;
 pub mod piecewise;

@@ -14,11 +14,15 @@ use super::param::ParamSet;
 /// its friction law. [`Model`](super::Model) (piecewise-linear, solved in
 /// closed form) and [`SmoothModel`](super::smooth::SmoothModel) (a smooth
 /// law, integrated) add the law.
-pub trait FrictionOscillator: Copy + Default + Send + Sync + 'static {
+///
+/// A model is described through its parameter set, which is the model
+/// instance: a compiled-in model's description is static (its type's
+/// `INFO`), a loaded model's is reached through a handle in its `Params`.
+pub trait FrictionOscillator: Copy + Send + Sync + 'static {
     /// The run-time parameters.
     type Params: ParamSet;
     /// Name, doc and parameters, as the model file declares them.
-    const IDENTITY: &'static Identity;
+    fn identity(p: &Self::Params) -> &'static Identity;
     /// The oscillator's linear part.
     fn oscillator(p: &Self::Params) -> Oscillator;
 }

@@ -82,10 +82,14 @@ pub enum ParamError {
     },
 }
 
-/// A set of run-time parameters, as generated for a model or scene.
-pub trait ParamSet: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync + 'static {
+/// A set of run-time parameters, as generated for a model or scene: the model
+/// instance every analysis is handed. A compiled-in model's `Params` is a
+/// struct of named fields (with `NAMES`, `index_of` and `from_pairs` as
+/// inherent items); a loaded model's holds a handle to the compiled model
+/// and its values.
+pub trait ParamSet: Copy + std::fmt::Debug + PartialEq + Send + Sync + 'static {
     /// Names of the fields, in order.
-    const NAMES: &'static [&'static str];
+    fn names(&self) -> &'static [&'static str];
     /// Field `index` (NaN when out of range).
     fn get(&self, index: usize) -> f64;
     /// Set field `index` without checking (see [`check`](Self::check)).
@@ -96,21 +100,21 @@ pub trait ParamSet: Copy + Default + std::fmt::Debug + PartialEq + Send + Sync +
     fn check(&self) -> Result<(), ParamError>;
 
     /// Index of a field by name.
-    fn index_of(name: &str) -> Option<usize> {
-        Self::NAMES.iter().position(|n| *n == name)
+    fn index_of(&self, name: &str) -> Option<usize> {
+        self.names().iter().position(|n| *n == name)
     }
 
-    /// The defaults with the given values set, checked.
-    fn from_pairs(info: &Identity, pairs: &[(&str, f64)]) -> Result<Self, ParamError> {
-        let mut p = Self::default();
+    /// These values with the given ones set, checked; `info` names the
+    /// model in errors.
+    fn with_pairs(mut self, info: &Identity, pairs: &[(&str, f64)]) -> Result<Self, ParamError> {
         for &(name, value) in pairs {
-            match Self::index_of(name) {
-                Some(i) => p.set(i, value),
+            match self.index_of(name) {
+                Some(i) => self.set(i, value),
                 None => return Err(ParamError::not_free(info, name)),
             }
         }
-        p.check()?;
-        Ok(p)
+        self.check()?;
+        Ok(self)
     }
 }
 
@@ -187,26 +191,46 @@ const SAME_LEVEL: f64 = 1e-12;
 /// Check [`Conditions`] (called by generated `check`); `boundaries` are the
 /// model's, to name those out of order.
 pub fn check_conditions(boundaries: &[BoundaryInfo], c: Conditions) -> Result<(), ParamError> {
+    check_derived(
+        boundaries,
+        [c.mass, c.stiffness, c.frequency],
+        c.velocities.len(),
+        |k| c.velocities[k],
+        c.stick,
+    )
+}
+
+/// [`check_conditions`] with the `count` boundary velocities given by
+/// `velocity(k)`, evaluated where they are compared (a loaded model's check
+/// stores none: it allocates nothing).
+pub fn check_derived(
+    boundaries: &[BoundaryInfo],
+    [mass, stiffness, frequency]: [f64; 3],
+    count: usize,
+    velocity: impl Fn(usize) -> f64,
+    stick: Option<(f64, f64, f64)>,
+) -> Result<(), ParamError> {
     for (what, value) in [
-        ("mass", c.mass),
-        ("stiffness", c.stiffness),
-        ("forcing frequency", c.frequency),
+        ("mass", mass),
+        ("stiffness", stiffness),
+        ("forcing frequency", frequency),
     ] {
         if !value.is_finite() || value <= 0.0 {
             return Err(ParamError::NotPositive { what, value });
         }
     }
-    for (k, w) in c.velocities.windows(2).enumerate() {
-        if w[0].partial_cmp(&w[1]) != Some(std::cmp::Ordering::Less) {
+    for k in 0..count.saturating_sub(1) {
+        let (lower, upper) = (velocity(k), velocity(k + 1));
+        if lower.partial_cmp(&upper) != Some(std::cmp::Ordering::Less) {
             return Err(ParamError::BoundaryOrder {
                 lower: boundaries[k].label,
-                lower_v: w[0],
+                lower_v: lower,
                 upper: boundaries[k + 1].label,
-                upper_v: w[1],
+                upper_v: upper,
             });
         }
     }
-    if let Some((bound, above, below)) = c.stick {
+    if let Some((bound, above, below)) = stick {
         for (kinetic, side) in [(above.abs(), "above"), (below.abs(), "below")] {
             // Equal up to rounding counts as equal: a smooth law's N-piece
             // model has `as = ak` at the belt speed, its kinetic level

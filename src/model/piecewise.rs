@@ -130,10 +130,10 @@ impl MappingEval {
 /// [`FrictionOscillator`] it is.
 ///
 /// Indices are those of [`ModelInfo`]: domains and boundaries lowest first,
-/// mappings in `INFO.mappings` order. An out-of-range index yields NaN.
+/// mappings in `info(p).mappings` order. An out-of-range index yields NaN.
 pub trait Model: FrictionOscillator {
-    /// The static description: the identity and the domains, boundaries and mappings.
-    const INFO: &'static ModelInfo;
+    /// The description: the identity and the domains, boundaries and mappings.
+    fn info(p: &Self::Params) -> &'static ModelInfo;
 
     /// Effective coefficients of domain `domain`.
     fn coefficients(p: &Self::Params, domain: usize) -> Coefficients;

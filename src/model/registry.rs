@@ -49,21 +49,25 @@ impl Entry {
     }
 }
 
-/// Something to do with a model chosen at run time by name (see
-/// [`crate::models::visit`]): one method per kind of model. A visitor
-/// implements the kinds it takes; the others return `None`, as for a name
-/// that is not compiled in.
+/// Something to do with a model chosen at run time (see
+/// [`crate::models::visit`] and [`crate::models::lookup`]): one method per
+/// kind of model, each handed the model's base parameter set (its declared
+/// defaults), which for a loaded model also carries the model itself. A
+/// visitor implements the kinds it takes; the others return `None`, as for
+/// a name that is not compiled in.
 pub trait ModelVisitor: Sized {
     /// What it returns.
     type Output;
 
-    /// Do it with the piecewise-linear model `M`.
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+    /// Do it with the piecewise-linear model `M`, whose defaults are `base`.
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        let _ = base;
         None
     }
 
-    /// Do it with the smooth-law model `M`.
-    fn smooth<M: SmoothModel>(self) -> Option<Self::Output> {
+    /// Do it with the smooth-law model `M`, whose defaults are `base`.
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        let _ = base;
         None
     }
 }

@@ -35,8 +35,8 @@ impl Deref for SmoothInfo {
 /// speed: `x'' + 2 d x' + c x = A0 cos(W t) − f(x')` for `x' ≠ V`, stick at `x' = V`.
 /// Its parameters and linear part are those of the [`FrictionOscillator`] it is.
 pub trait SmoothModel: FrictionOscillator {
-    /// Static description: the identity and the law.
-    const INFO: &'static SmoothInfo;
+    /// The description: the identity and the law.
+    fn info(p: &Self::Params) -> &'static SmoothInfo;
     /// The belt speed `V` (the stick velocity).
     fn belt(p: &Self::Params) -> f64;
     /// The static friction bound `as` per unit mass.

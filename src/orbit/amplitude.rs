@@ -51,7 +51,7 @@ pub fn of_motion<M: Model>(
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Option<Amplitude> {
-    let info = M::INFO;
+    let info = M::info(p);
     let osc = M::oscillator(p);
     let shift = std::f64::consts::TAU * structure.periods() as f64;
     let mut amp = Amplitude { x: 0.0, v: 0.0 };

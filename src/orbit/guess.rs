@@ -7,7 +7,7 @@ use std::cmp::Ordering;
 use std::f64::consts::TAU;
 
 use crate::dynamics::simulate::{EventKind, Location, Segment, SimError, Simulator};
-use crate::model::{MappingKind, Model};
+use crate::model::{MappingKind, Model, ModelInfo};
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::structure::Structure;
 
@@ -60,17 +60,17 @@ pub enum Departure {
 }
 
 /// Where the flow of mapping `index` runs.
-fn location_of<M: Model>(index: usize) -> Location {
-    let mi = &M::INFO.mappings[index];
+fn location_of(info: &ModelInfo, index: usize) -> Location {
+    let mi = &info.mappings[index];
     match (mi.kind, mi.domain) {
         (MappingKind::Stick, _) | (_, None) => Location::Stick,
         (_, Some(j)) => Location::Domain(j),
     }
 }
 
-fn location_name<M: Model>(location: Location) -> String {
+fn location_name(info: &ModelInfo, location: Location) -> String {
     match location {
-        Location::Domain(j) => format!("domain {}", M::INFO.domains[j].label),
+        Location::Domain(j) => format!("domain {}", info.domains[j].label),
         Location::Stick => "stick".to_string(),
     }
 }
@@ -84,12 +84,12 @@ pub fn points_from_guess<M: Model>(
     phase: f64,
     x: f64,
 ) -> Result<Vec<SwitchingPoint>, Departure> {
-    let info = M::INFO;
+    let info = sim.info();
     let steps = structure.steps();
     let m = steps.len();
     let first = &info.mappings[steps[0]];
     let v0 = sim.velocity(first.from);
-    let location = location_of::<M>(steps[0]);
+    let location = location_of(info, steps[0]);
     if let Location::Domain(j) = location {
         let acc = M::normal_field(sim.params(), j, x, v0, phase)[0];
         let into = if info.domains[j].lower == Some(first.from) {
@@ -129,15 +129,15 @@ pub fn points_from_guess<M: Model>(
         if event.kind == EventKind::Graze {
             continue;
         }
-        let want = location_of::<M>(steps[(k + 1) % m]);
+        let want = location_of(info, steps[(k + 1) % m]);
         if event.boundary != mi.to || event.after != want {
             return Err(Departure::Elsewhere {
                 index: k,
                 mapping: mi.name,
                 boundary: info.boundaries[event.boundary].label,
-                after: location_name::<M>(event.after),
+                after: location_name(info, event.after),
                 want_boundary: info.boundaries[mi.to].label,
-                want_after: location_name::<M>(want),
+                want_after: location_name(info, want),
             });
         }
         if k + 1 < m {

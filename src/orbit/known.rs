@@ -73,7 +73,7 @@ pub const REACH_FACTOR: f64 = 10.0;
 /// `|c_j| + |2 d_j| W` for the force of domain `j`.
 pub fn state_to_margin<M: Model>(sim: &Simulator<M>) -> f64 {
     let w = sim.oscillator().frequency.abs();
-    (0..M::INFO.domains.len())
+    (0..sim.info().domains.len())
         .map(|j| {
             let co = sim.coefficients(j);
             co.c.abs() + co.two_d.abs() * w
@@ -323,7 +323,7 @@ impl KnownMotions {
         let located = located_states(sim, motion, self.phase0);
         let states: Vec<StroboscopicState> = located.iter().map(|&(_, s)| s).collect();
         let w = self.frequency;
-        let info = M::INFO;
+        let info = sim.info();
         let mut extent = [
             f64::INFINITY,
             f64::NEG_INFINITY,

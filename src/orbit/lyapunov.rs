@@ -222,7 +222,7 @@ pub fn spectrum<M: Model>(
         Some(Attractor::Periodic(motion)) => {
             let floquet = floquet_exponents(sim, motion)?;
             let verdict = Verdict::Periodic {
-                structure: motion.structure.notation(M::INFO),
+                structure: motion.structure.notation(sim.info()),
                 n: motion.structure.periods(),
             };
             (verdict, floquet.unwrap_or(exponents))

@@ -55,7 +55,7 @@ pub fn segment_at<M: Model>(
     points: &[SwitchingPoint],
     k: usize,
 ) -> Segment {
-    let mi = M::INFO.mappings[structure.steps()[k]];
+    let mi = sim.info().mappings[structure.steps()[k]];
     let location = match (mi.kind, mi.domain) {
         (MappingKind::Stick, _) | (_, None) => Location::Stick,
         (_, Some(j)) => Location::Domain(j),
@@ -191,7 +191,7 @@ pub fn solve_with<M: Model>(
     }
     let (dp, stability, violations) = if termination.converged() {
         let dp = if evaluated {
-            solver.poincare_jacobian_at_solution()
+            solver.poincare_jacobian_at_solution(sim.params())
         } else {
             solver.poincare_jacobian(sim.params(), &points)
         }

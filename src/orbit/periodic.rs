@@ -13,7 +13,7 @@
 use nalgebra::{Matrix2, Vector2};
 use serde::Serialize;
 
-use crate::model::{MappingEval, MappingKind, Model, Phase};
+use crate::model::{MappingEval, MappingKind, Model, ModelInfo, Phase};
 use crate::orbit::structure::Structure;
 
 /// A switching point: the start of one mapping.
@@ -52,7 +52,9 @@ pub fn monodromy<M: Model>(
     shift: f64,
     points: &[SwitchingPoint],
 ) -> Result<Matrix2<f64>, usize> {
-    chain::<M>(steps, 0, |k| evaluate::<M>(p, steps, shift, points, k))
+    chain(M::info(p), steps, 0, |k| {
+        evaluate::<M>(p, steps, shift, points, k)
+    })
 }
 
 /// [`monodromy`] of the cycle taken from its first mapping that is not a
@@ -67,8 +69,11 @@ pub fn monodromy_spectral<M: Model>(
     shift: f64,
     points: &[SwitchingPoint],
 ) -> Result<Matrix2<f64>, usize> {
-    let start = steps.iter().position(|&s| !is_stick::<M>(s)).unwrap_or(0);
-    chain::<M>(steps, start, |k| evaluate::<M>(p, steps, shift, points, k))
+    let info = M::info(p);
+    let start = steps.iter().position(|&s| !is_stick(info, s)).unwrap_or(0);
+    chain(info, steps, start, |k| {
+        evaluate::<M>(p, steps, shift, points, k)
+    })
 }
 
 fn evaluate<M: Model>(
@@ -82,9 +87,8 @@ fn evaluate<M: Model>(
     M::mapping(p, steps[k], a.x, a.phase, b.x, b.phase)
 }
 
-fn is_stick<M: Model>(step: usize) -> bool {
-    M::INFO
-        .mappings
+fn is_stick(info: &ModelInfo, step: usize) -> bool {
+    info.mappings
         .get(step)
         .is_some_and(|m| m.kind == MappingKind::Stick)
 }
@@ -93,7 +97,8 @@ fn is_stick<M: Model>(step: usize) -> bool {
 /// `eval(k)`), the `i`-th factor being mapping `(start + i) mod len`, a
 /// flow and the stick after it as one factor. `Err` with the mapping whose
 /// arrival is singular.
-fn chain<M: Model>(
+fn chain(
+    info: &ModelInfo,
     steps: &[usize],
     start: usize,
     mut eval: impl FnMut(usize) -> MappingEval,
@@ -105,7 +110,7 @@ fn chain<M: Model>(
         let k = (start + i) % m;
         let next = (k + 1) % m;
         let e = eval(k);
-        if i + 1 < m && is_stick::<M>(steps[next]) && !is_stick::<M>(steps[k]) {
+        if i + 1 < m && is_stick(info, steps[next]) && !is_stick(info, steps[k]) {
             dp = e.local_jacobian_into_stick(&eval(next)).ok_or(next)? * dp;
             i += 2;
         } else {
@@ -232,7 +237,7 @@ impl<M: Model> PeriodicSolver<M> {
         let osc = M::oscillator(p);
         let w = osc.frequency.abs();
         let mut l = (osc.amplitude / osc.stiffness.abs().max(w * w)).abs();
-        for b in 0..M::INFO.boundaries.len() {
+        for b in 0..M::info(p).boundaries.len() {
             l = l.max((M::boundary_velocity(p, b) / w).abs());
         }
         for q in points {
@@ -609,8 +614,11 @@ impl<M: Model> PeriodicSolver<M> {
     /// evaluations it made there (none made anew): the value
     /// [`poincare_jacobian`](Self::poincare_jacobian) gives at those points,
     /// to the bit. Valid only right after a `solve` that converged.
-    pub fn poincare_jacobian_at_solution(&self) -> Result<Matrix2<f64>, SingularStep> {
-        chain::<M>(self.structure.steps(), 0, |k| self.evals[k]).map_err(|k| SingularStep {
+    pub fn poincare_jacobian_at_solution(
+        &self,
+        p: &M::Params,
+    ) -> Result<Matrix2<f64>, SingularStep> {
+        chain(M::info(p), self.structure.steps(), 0, |k| self.evals[k]).map_err(|k| SingularStep {
             segment: Some(k),
             reason: "the arrival is tangent to the boundary (grazing)",
         })

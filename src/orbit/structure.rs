@@ -194,7 +194,6 @@ impl Structure {
 mod tests {
     use super::*;
     use crate::models::paper::Paper;
-    use crate::Model;
 
     #[test]
     fn parses_both_notations_and_applies_right_to_left() {

@@ -54,9 +54,9 @@ pub struct Description {
 
 /// Describe model `M` at parameters `p`.
 pub fn describe<M: Model>(p: &M::Params) -> Description {
-    let info = M::INFO;
+    let info = M::info(p);
     let mut params = serde_json::Map::new();
-    for (k, name) in <M::Params as ParamSet>::NAMES.iter().enumerate() {
+    for (k, name) in p.names().iter().enumerate() {
         params.insert(name.to_string(), serde_json::json!(p.get(k)));
     }
     let vel = |k: Option<usize>| k.map(|k| M::boundary_velocity(p, k));

@@ -55,7 +55,7 @@ pub struct History {
 
 impl History {
     fn boundaries_of<M: Model>(sim: &Simulator<M>, pieces: &[Piece]) -> Vec<(&'static str, f64)> {
-        let info = M::INFO;
+        let info = sim.info();
         let mut ks: Vec<usize> = Vec::new();
         for piece in pieces {
             let edges = match piece.location {
@@ -86,7 +86,7 @@ impl History {
         per_period: usize,
         switching: bool,
     ) -> Piece {
-        let info = M::INFO;
+        let info = sim.info();
         let osc = sim.oscillator();
         let label = match seg.location {
             Location::Domain(j) => info.domains[j].label,

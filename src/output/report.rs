@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use crate::dynamics::simulate::Simulator;
 use crate::model::param::ParamSet;
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::admissible::Violation;
 use crate::orbit::attractor::{AutonomousCycle, NoMotion, PermanentStick};
 use crate::orbit::motion::Motion;
@@ -27,10 +27,10 @@ const TAU: f64 = 2.0 * std::f64::consts::PI;
 pub struct ParamValues(pub Vec<(&'static str, f64)>);
 
 impl ParamValues {
-    /// Every field of `p`, named by `P::NAMES`.
+    /// Every field of `p`, named by [`ParamSet::names`].
     pub fn of<P: ParamSet>(p: &P) -> Self {
         Self(
-            P::NAMES
+            p.names()
                 .iter()
                 .enumerate()
                 .map(|(i, &n)| (n, p.get(i)))
@@ -291,7 +291,7 @@ fn newton_of(t: &Termination, residual: impl FnOnce() -> Option<f64>) -> (Newton
 impl Report {
     /// The report of a Newton solution: periodic, inadmissible or not converged.
     pub fn of_motion<M: Model>(sim: &Simulator<M>, motion: &Motion) -> Self {
-        let info = M::INFO;
+        let info = sim.info();
         let p = sim.params();
         let structure = motion.structure.notation(info);
         let (newton, reason) = newton_of(&motion.termination, || {
@@ -348,31 +348,31 @@ impl Report {
     }
 
     /// The report of a certified NM.
-    pub fn of_no_motion<M: Model>(nm: &NoMotion) -> Self {
+    pub fn of_no_motion(info: &ModelInfo, nm: &NoMotion) -> Self {
         Report::NoMotion(NoMotionReport {
             max_v: nm.max_v,
-            model: M::INFO.name,
+            model: info.name,
             min_v: nm.min_v,
-            domain: M::INFO.domains[nm.domain].label,
+            domain: info.domains[nm.domain].label,
             certified_at: nm.certified_at,
         })
     }
 
     /// The report of a permanent stick.
-    pub fn of_stick<M: Model>(s: &PermanentStick) -> Self {
+    pub fn of_stick(info: &ModelInfo, s: &PermanentStick) -> Self {
         Report::Stick(StickReport {
             x: s.x,
             v: s.v,
             since: s.since,
             max_force: s.max_force,
             static_bound: s.static_bound,
-            model: M::INFO.name,
+            model: info.name,
         })
     }
 
     /// The report of an autonomous stick-slip cycle.
     pub fn of_autonomous<M: Model>(sim: &Simulator<M>, a: &AutonomousCycle) -> Self {
-        let info = M::INFO;
+        let info = sim.info();
         let names: Vec<&str> = a
             .steps
             .iter()

@@ -58,7 +58,7 @@ pub fn settle<M: Model>(
         Ok(Attractor::Periodic(motion)) => motion_parts(sim, motion),
         Err(OrbitError::Inadmissible(motion)) => motion_parts(sim, *motion),
         Ok(Attractor::NoMotion(nm)) => (
-            Report::of_no_motion::<M>(&nm),
+            Report::of_no_motion(sim.info(), &nm),
             "NM, no boundary contact".to_string(),
             Some("last simulated forcing period"),
             Window::Simulated {
@@ -69,7 +69,7 @@ pub fn settle<M: Model>(
         Ok(Attractor::Stick(stick)) => {
             let from = stick.since.max(phase);
             (
-                Report::of_stick::<M>(&stick),
+                Report::of_stick(sim.info(), &stick),
                 format!("permanent stick at x = {:.6}", stick.x),
                 Some("one forcing period"),
                 Window::Simulated {
@@ -111,7 +111,7 @@ type Parts = (Report, String, Option<&'static str>, Window);
 fn motion_parts<M: Model>(sim: &Simulator<M>, motion: Motion) -> Parts {
     let heading = format!(
         "{}, N = {}",
-        motion.structure.notation(M::INFO),
+        motion.structure.notation(sim.info()),
         motion.structure.periods()
     );
     (

@@ -201,7 +201,7 @@ pub fn starts<M: Model>(
 ) -> Vec<(f64, f64)> {
     let osc = sim.oscillator();
     let w = osc.frequency;
-    let vb = (0..M::INFO.boundaries.len()).map(|k| sim.velocity(k));
+    let vb = (0..sim.info().boundaries.len()).map(|k| sim.velocity(k));
     let (vlo, vhi) = vb.fold((0.0_f64, 0.0_f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let [mut x0, mut x1, mut v0, mut v1] = known.extent().unwrap_or_else(|| {
         let l = osc.amplitude.abs() / osc.stiffness.max(w * w) + vlo.abs().max(vhi.abs()) / w;

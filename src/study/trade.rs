@@ -13,6 +13,7 @@ use crate::dynamics::simulate::{Location, Segment, SimOptions, Simulator};
 use crate::model::param::ParamSet;
 use crate::model::smooth::SmoothModel;
 use crate::model::{MappingKind, Model, ModelVisitor};
+use crate::models::ModelRef;
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
@@ -223,7 +224,7 @@ fn piecewise<M: Model>(p: M::Params) -> Result<(Fingerprint, String, f64), Strin
         }
     };
     let seconds = start.elapsed().as_secs_f64();
-    let info = M::INFO;
+    let info = sim.info();
     let stick = info.stick_boundary();
     let m = motion.points.len();
     let shift = TAU * motion.structure.periods() as f64;
@@ -280,18 +281,21 @@ struct Piecewise<'a> {
 
 impl ModelVisitor for Piecewise<'_> {
     type Output = Result<(Fingerprint, String, f64), String>;
-    fn piecewise<M: Model>(self) -> Option<Self::Output> {
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
         let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
         Some(
-            M::Params::from_pairs(M::INFO, &pairs)
+            base.with_pairs(M::identity(&base), &pairs)
                 .map_err(|e| e.to_string())
                 .and_then(piecewise::<M>),
         )
     }
 }
 
-/// The trade for the smooth model `S` (its piecewise scenes are looked up as `NAME::plN`).
+/// The trade for the smooth model `model` names (its piecewise scenes are
+/// its scenes `plN`, compiled in as `NAME::plN` or in the same file).
 pub struct Measure<'a> {
+    /// The model.
+    pub model: &'a ModelRef,
     /// Parameter values.
     pub set: &'a [(String, f64)],
     /// Piece counts.
@@ -304,24 +308,31 @@ pub struct Measure<'a> {
 
 impl ModelVisitor for Measure<'_> {
     type Output = Result<Trade, TradeError>;
-    fn smooth<S: SmoothModel>(self) -> Option<Self::Output> {
-        Some(self.measure::<S>())
+    fn smooth<S: SmoothModel>(self, base: S::Params) -> Option<Self::Output> {
+        Some(self.measure::<S>(base))
     }
 }
 
 impl Measure<'_> {
-    fn measure<S: SmoothModel>(self) -> Result<Trade, TradeError> {
-        let name = S::INFO.name;
+    fn measure<S: SmoothModel>(self, base: S::Params) -> Result<Trade, TradeError> {
+        let name = S::info(&base).name;
         let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-        let p =
-            S::Params::from_pairs(S::INFO, &pairs).map_err(|e| TradeError::Input(e.to_string()))?;
+        let p = base
+            .with_pairs(S::identity(&base), &pairs)
+            .map_err(|e| TradeError::Input(e.to_string()))?;
         // Piecewise predictions first: the finest one gives the period N of the motion.
         let mut pw = Vec::new();
         for &n in self.pieces {
-            let scene = format!("{name}::pl{n}");
-            let result = crate::models::visit(&scene, Piecewise { set: self.set }).ok_or_else(|| {
-                TradeError::Input(format!("`{scene}` is not compiled in: the model file needs `scene pl{n} {{ pieces: {n}; }}`"))
-            })?;
+            let scene = self.model.scene(&format!("pl{n}"));
+            let missing = || {
+                TradeError::Input(format!(
+                    "no model `{scene}`: the model file needs `scene pl{n} {{ pieces: {n}; }}`"
+                ))
+            };
+            let result = scene
+                .visit(Piecewise { set: self.set })
+                .map_err(|_| missing())?
+                .ok_or_else(missing)?;
             pw.push((n, result));
         }
         let periods = pw

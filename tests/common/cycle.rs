@@ -73,7 +73,10 @@ pub fn held<M: Model>(
 
 /// Every end of `curves` that is neither on the box's edge nor at a
 /// codimension-two point, described (kind, motion, place, why).
-pub fn other_ends<M: Model>(curves: &[stickslip::bifurcation::curve::Curve]) -> Vec<String> {
+pub fn other_ends(
+    info: &stickslip::ModelInfo,
+    curves: &[stickslip::bifurcation::curve::Curve],
+) -> Vec<String> {
     use stickslip::bifurcation::curve::CurveEndReason;
     curves
         .iter()
@@ -88,7 +91,7 @@ pub fn other_ends<M: Model>(curves: &[stickslip::bifurcation::curve::Curve]) -> 
             format!(
                 "{:?} {:?} ends at W = {}, Q0 = {}: {:?}",
                 c.kind,
-                c.structure.as_ref().map(|s| s.notation(M::INFO)),
+                c.structure.as_ref().map(|s| s.notation(info)),
                 e.at.x,
                 e.at.y,
                 e.reason

@@ -45,7 +45,7 @@ const SAMPLES: usize = 16;
 
 impl PiecewiseOde {
     pub fn of<M: Model>(p: &M::Params) -> Self {
-        let info = M::INFO;
+        let info = M::info(p);
         let osc = M::oscillator(p);
         Self {
             a0: osc.amplitude,

@@ -107,6 +107,6 @@ pub fn derivative(f: impl Fn(f64) -> f64, x: f64, h: f64) -> f64 {
 }
 
 /// Parameter names of a model, for messages.
-pub fn names<P: ParamSet>() -> &'static [&'static str] {
-    P::NAMES
+pub fn names<P: ParamSet>(p: &P) -> &'static [&'static str] {
+    p.names()
 }

@@ -44,7 +44,7 @@ impl Reference {
 /// The segment that starts mapping `idx` at `pt` (built directly: on a
 /// boundary, `Simulator::start` would pick the side from the vector field).
 pub fn segment_for<M: Model>(sim: &Simulator<M>, idx: usize, pt: SwitchingPoint) -> Segment {
-    let mi = M::INFO.mappings[idx];
+    let mi = sim.info().mappings[idx];
     Segment {
         x: pt.x,
         v: sim.velocity(mi.from),

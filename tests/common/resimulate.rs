@@ -5,7 +5,6 @@
 use std::f64::consts::TAU;
 
 use stickslip::dynamics::simulate::{EventKind, Location, Segment, SimOptions, Simulator};
-use stickslip::model::Model;
 use stickslip::models::paper::{Paper, Params};
 use stickslip::orbit::periodic::SwitchingPoint;
 use stickslip::orbit::structure::Structure;

@@ -48,8 +48,9 @@ impl ::core::default::Default for Params {
         }
     }
 }
-impl ::stickslip::ParamSet for Params {
-    const NAMES: &'static [&'static str] = &[
+impl Params {
+    /// Names of the fields, in order.
+    pub const NAMES: &'static [&'static str] = &[
         "m",
         "d",
         "c",
@@ -60,6 +61,22 @@ impl ::stickslip::ParamSet for Params {
         "Q0",
         "W",
     ];
+    /// Index of a field by name.
+    pub fn index_of(name: &str) -> ::core::option::Option<usize> {
+        Self::NAMES.iter().position(|n| *n == name)
+    }
+    /// The defaults with the given values set, checked; `info` names the model in errors.
+    pub fn from_pairs(
+        info: &::stickslip::Identity,
+        pairs: &[(&str, f64)],
+    ) -> ::core::result::Result<Self, ::stickslip::ParamError> {
+        ::stickslip::ParamSet::with_pairs(Self::default(), info, pairs)
+    }
+}
+impl ::stickslip::ParamSet for Params {
+    fn names(&self) -> &'static [&'static str] {
+        Self::NAMES
+    }
     fn get(&self, index: usize) -> f64 {
         match index {
             0usize => self.m,
@@ -179,6 +196,7 @@ pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
             },
         ],
         free: &[0usize, 1usize, 2usize, 3usize, 4usize, 5usize, 6usize, 7usize, 8usize],
+        source_hash: None,
     },
     boundaries: &[
         ::stickslip::BoundaryInfo {
@@ -247,14 +265,24 @@ pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
 pub struct Coulomb;
 impl ::stickslip::FrictionOscillator for Coulomb {
     type Params = Params;
-    const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+    #[inline]
+    fn identity(_: &Params) -> &'static ::stickslip::Identity {
+        &INFO.identity
+    }
     #[inline]
     fn oscillator(p: &Params) -> ::stickslip::Oscillator {
         oscillator(p)
     }
 }
+impl Coulomb {
+    /// The static description, [`Model::info`](::stickslip::Model::info) at every parameter set.
+    pub const INFO: &'static ::stickslip::ModelInfo = &INFO;
+}
 impl ::stickslip::Model for Coulomb {
-    const INFO: &'static ::stickslip::ModelInfo = &INFO;
+    #[inline]
+    fn info(_: &Params) -> &'static ::stickslip::ModelInfo {
+        &INFO
+    }
     #[inline]
     fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
         match domain {

@@ -72,8 +72,9 @@ impl ::core::default::Default for Params {
         }
     }
 }
-impl ::stickslip::ParamSet for Params {
-    const NAMES: &'static [&'static str] = &[
+impl Params {
+    /// Names of the fields, in order.
+    pub const NAMES: &'static [&'static str] = &[
         "m",
         "d",
         "c",
@@ -90,6 +91,22 @@ impl ::stickslip::ParamSet for Params {
         "Q0",
         "W",
     ];
+    /// Index of a field by name.
+    pub fn index_of(name: &str) -> ::core::option::Option<usize> {
+        Self::NAMES.iter().position(|n| *n == name)
+    }
+    /// The defaults with the given values set, checked; `info` names the model in errors.
+    pub fn from_pairs(
+        info: &::stickslip::Identity,
+        pairs: &[(&str, f64)],
+    ) -> ::core::result::Result<Self, ::stickslip::ParamError> {
+        ::stickslip::ParamSet::with_pairs(Self::default(), info, pairs)
+    }
+}
+impl ::stickslip::ParamSet for Params {
+    fn names(&self) -> &'static [&'static str] {
+        Self::NAMES
+    }
     fn get(&self, index: usize) -> f64 {
         match index {
             0usize => self.m,
@@ -266,6 +283,7 @@ pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
             0usize, 1usize, 2usize, 3usize, 4usize, 5usize, 6usize, 7usize, 8usize,
             9usize, 10usize, 11usize, 12usize, 13usize, 14usize,
         ],
+        source_hash: None,
     },
     boundaries: &[
         ::stickslip::BoundaryInfo {
@@ -426,14 +444,24 @@ pub static INFO: ::stickslip::ModelInfo = ::stickslip::ModelInfo {
 pub struct Paper;
 impl ::stickslip::FrictionOscillator for Paper {
     type Params = Params;
-    const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+    #[inline]
+    fn identity(_: &Params) -> &'static ::stickslip::Identity {
+        &INFO.identity
+    }
     #[inline]
     fn oscillator(p: &Params) -> ::stickslip::Oscillator {
         oscillator(p)
     }
 }
+impl Paper {
+    /// The static description, [`Model::info`](::stickslip::Model::info) at every parameter set.
+    pub const INFO: &'static ::stickslip::ModelInfo = &INFO;
+}
 impl ::stickslip::Model for Paper {
-    const INFO: &'static ::stickslip::ModelInfo = &INFO;
+    #[inline]
+    fn info(_: &Params) -> &'static ::stickslip::ModelInfo {
+        &INFO
+    }
     #[inline]
     fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
         match domain {
@@ -1818,8 +1846,25 @@ pub mod sweep_w {
             Self { W: 3.0 }
         }
     }
+    impl Params {
+        /// Names of the fields, in order.
+        pub const NAMES: &'static [&'static str] = &["W"];
+        /// Index of a field by name.
+        pub fn index_of(name: &str) -> ::core::option::Option<usize> {
+            Self::NAMES.iter().position(|n| *n == name)
+        }
+        /// The defaults with the given values set, checked; `info` names the model in errors.
+        pub fn from_pairs(
+            info: &::stickslip::Identity,
+            pairs: &[(&str, f64)],
+        ) -> ::core::result::Result<Self, ::stickslip::ParamError> {
+            ::stickslip::ParamSet::with_pairs(Self::default(), info, pairs)
+        }
+    }
     impl ::stickslip::ParamSet for Params {
-        const NAMES: &'static [&'static str] = &["W"];
+        fn names(&self) -> &'static [&'static str] {
+            Self::NAMES
+        }
         fn get(&self, index: usize) -> f64 {
             match index {
                 0usize => self.W,
@@ -1962,6 +2007,7 @@ pub mod sweep_w {
                 },
             ],
             free: &[14usize],
+            source_hash: None,
         },
         boundaries: &[
             ::stickslip::BoundaryInfo {
@@ -2119,14 +2165,24 @@ pub mod sweep_w {
     pub struct SweepW;
     impl ::stickslip::FrictionOscillator for SweepW {
         type Params = Params;
-        const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+        #[inline]
+        fn identity(_: &Params) -> &'static ::stickslip::Identity {
+            &INFO.identity
+        }
         #[inline]
         fn oscillator(p: &Params) -> ::stickslip::Oscillator {
             oscillator(p)
         }
     }
+    impl SweepW {
+        /// The static description, [`Model::info`](::stickslip::Model::info) at every parameter set.
+        pub const INFO: &'static ::stickslip::ModelInfo = &INFO;
+    }
     impl ::stickslip::Model for SweepW {
-        const INFO: &'static ::stickslip::ModelInfo = &INFO;
+        #[inline]
+        fn info(_: &Params) -> &'static ::stickslip::ModelInfo {
+            &INFO
+        }
         #[inline]
         fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
             match domain {
@@ -3546,8 +3602,25 @@ pub mod reference {
             Self { Q0: 70.0, W: 3.0 }
         }
     }
+    impl Params {
+        /// Names of the fields, in order.
+        pub const NAMES: &'static [&'static str] = &["Q0", "W"];
+        /// Index of a field by name.
+        pub fn index_of(name: &str) -> ::core::option::Option<usize> {
+            Self::NAMES.iter().position(|n| *n == name)
+        }
+        /// The defaults with the given values set, checked; `info` names the model in errors.
+        pub fn from_pairs(
+            info: &::stickslip::Identity,
+            pairs: &[(&str, f64)],
+        ) -> ::core::result::Result<Self, ::stickslip::ParamError> {
+            ::stickslip::ParamSet::with_pairs(Self::default(), info, pairs)
+        }
+    }
     impl ::stickslip::ParamSet for Params {
-        const NAMES: &'static [&'static str] = &["Q0", "W"];
+        fn names(&self) -> &'static [&'static str] {
+            Self::NAMES
+        }
         fn get(&self, index: usize) -> f64 {
             match index {
                 0usize => self.Q0,
@@ -3692,6 +3765,7 @@ pub mod reference {
                 },
             ],
             free: &[13usize, 14usize],
+            source_hash: None,
         },
         boundaries: &[
             ::stickslip::BoundaryInfo {
@@ -3840,14 +3914,24 @@ pub mod reference {
     pub struct Reference;
     impl ::stickslip::FrictionOscillator for Reference {
         type Params = Params;
-        const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+        #[inline]
+        fn identity(_: &Params) -> &'static ::stickslip::Identity {
+            &INFO.identity
+        }
         #[inline]
         fn oscillator(p: &Params) -> ::stickslip::Oscillator {
             oscillator(p)
         }
     }
+    impl Reference {
+        /// The static description, [`Model::info`](::stickslip::Model::info) at every parameter set.
+        pub const INFO: &'static ::stickslip::ModelInfo = &INFO;
+    }
     impl ::stickslip::Model for Reference {
-        const INFO: &'static ::stickslip::ModelInfo = &INFO;
+        #[inline]
+        fn info(_: &Params) -> &'static ::stickslip::ModelInfo {
+            &INFO
+        }
         #[inline]
         fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
             match domain {

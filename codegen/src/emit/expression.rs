@@ -12,7 +12,7 @@ use std::collections::{BTreeMap, HashMap};
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::expr::{children, Graph, Hom, Id, Node};
+use crate::expr::{Graph, Hom, Id, Node, Schedule};
 
 /// Operator precedence of an emitted expression, lowest first.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -185,23 +185,7 @@ pub(super) fn straight_line_with_phases(
     phases: &[(u32, &str)],
     outputs: &[Id],
 ) -> (TokenStream, Vec<TokenStream>) {
-    let n = outputs.iter().map(|o| o.0 as usize + 1).max().unwrap_or(0);
-    let mut reach = vec![false; n];
-    let mut uses = vec![0u32; n];
-    let mut stack: Vec<Id> = outputs.to_vec();
-    for o in outputs {
-        uses[o.0 as usize] += 1;
-    }
-    while let Some(id) = stack.pop() {
-        if reach[id.0 as usize] {
-            continue;
-        }
-        reach[id.0 as usize] = true;
-        for c in children(g.node(id)) {
-            uses[c.0 as usize] += 1;
-            stack.push(c);
-        }
-    }
+    let schedule = Schedule::new(g, outputs);
     let mut w = Writer {
         g,
         params,
@@ -216,23 +200,20 @@ pub(super) fn straight_line_with_phases(
         bound: HashMap::new(),
     };
     let mut stmts = TokenStream::new();
-    let reads_params = (0..n)
-        .filter(|&i| reach[i])
-        .any(|i| matches!(g.node(Id(i as u32)), Node::Param(_)));
+    let reads_params = schedule
+        .nodes()
+        .any(|id| matches!(g.node(id), Node::Param(_)));
     if !reads_params {
         // Every parameter this function reads was folded at build time.
         stmts.extend(quote!(let _ = p;));
     }
     let mut homs: BTreeMap<(Id, Id, Id), (Ident, Ident)> = BTreeMap::new();
     let mut counter = 0usize;
-    for i in 0..n {
-        if !reach[i] {
+    for id in schedule.nodes() {
+        if !schedule.is_bound(g, id) {
             continue;
         }
-        let id = Id(i as u32);
-        let node = g.node(id);
-        match node {
-            Node::Const(_) | Node::Param(_) | Node::Var(_) => continue,
+        match g.node(id) {
             Node::Hom(kind, d, c, tau) => {
                 let key = (d, c, tau);
                 if let std::collections::btree_map::Entry::Vacant(slot) = homs.entry(key) {
@@ -252,14 +233,13 @@ pub(super) fn straight_line_with_phases(
                 };
                 w.bound.insert(id, name);
             }
-            _ if uses[i] >= 2 => {
+            _ => {
                 let e = w.expr(id).0;
                 let name = format_ident!("t{}", counter);
                 counter += 1;
                 stmts.extend(quote!(let #name = #e;));
                 w.bound.insert(id, name);
             }
-            _ => {}
         }
     }
     let outs = outputs.iter().map(|&o| w.expr(o).0).collect();

@@ -64,6 +64,7 @@ pub(super) fn info(e: &Equations) -> TokenStream {
                 doc: #docs,
                 params: &[#(#params)*],
                 free: &[#(#free)*],
+                source_hash: None,
             },
             boundaries: &[#(#boundaries)*],
             domains: &[#(#domains)*],

@@ -29,8 +29,14 @@ pub(super) fn model_impl(type_ident: &Ident, type_doc: &[String], f: &Functions)
 
         #base
 
+        impl #type_ident {
+            /// The static description, [`Model::info`](::stickslip::Model::info) at every parameter set.
+            pub const INFO: &'static ::stickslip::ModelInfo = &INFO;
+        }
+
         impl ::stickslip::Model for #type_ident {
-            const INFO: &'static ::stickslip::ModelInfo = &INFO;
+            #[inline]
+            fn info(_: &Params) -> &'static ::stickslip::ModelInfo { &INFO }
             #[inline]
             fn coefficients(p: &Params, domain: usize) -> ::stickslip::Coefficients {
                 match domain { #coefficients _ => ::stickslip::Coefficients::NAN }
@@ -69,7 +75,8 @@ pub(super) fn friction_oscillator_impl(type_ident: &Ident, oscillator: TokenStre
     quote! {
         impl ::stickslip::FrictionOscillator for #type_ident {
             type Params = Params;
-            const IDENTITY: &'static ::stickslip::Identity = &INFO.identity;
+            #[inline]
+            fn identity(_: &Params) -> &'static ::stickslip::Identity { &INFO.identity }
             #[inline]
             fn oscillator(p: &Params) -> ::stickslip::Oscillator { #oscillator }
         }

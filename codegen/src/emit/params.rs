@@ -55,8 +55,24 @@ pub(super) fn params_items(
             fn default() -> Self { Self { #(#defaults)* } }
         }
 
+        impl Params {
+            /// Names of the fields, in order.
+            pub const NAMES: &'static [&'static str] = &[#(#names_lit),*];
+            /// Index of a field by name.
+            pub fn index_of(name: &str) -> ::core::option::Option<usize> {
+                Self::NAMES.iter().position(|n| *n == name)
+            }
+            /// The defaults with the given values set, checked; `info` names the model in errors.
+            pub fn from_pairs(
+                info: &::stickslip::Identity,
+                pairs: &[(&str, f64)],
+            ) -> ::core::result::Result<Self, ::stickslip::ParamError> {
+                ::stickslip::ParamSet::with_pairs(Self::default(), info, pairs)
+            }
+        }
+
         impl ::stickslip::ParamSet for Params {
-            const NAMES: &'static [&'static str] = &[#(#names_lit),*];
+            fn names(&self) -> &'static [&'static str] { Self::NAMES }
             fn get(&self, index: usize) -> f64 {
                 match index { #(#get_arms)* _ => f64::NAN }
             }

@@ -114,15 +114,16 @@ fn registered(inst: &InstanceName) -> (TokenStream, TokenStream) {
     let segments: Vec<Ident> = inst.path.split("::").map(ident).collect();
     let ty = ident(&inst.type_name);
     let name = &inst.name;
+    let base = quote!(<#(#segments::)*Params as ::core::default::Default>::default());
     if inst.smooth {
         (
             quote!(crate::model::registry::Entry::Smooth(&#(#segments::)*INFO)),
-            quote!(#name => visitor.smooth::<#(#segments::)*#ty>(),),
+            quote!(#name => visitor.smooth::<#(#segments::)*#ty>(#base),),
         )
     } else {
         (
             quote!(crate::model::registry::Entry::Piecewise(&#(#segments::)*INFO)),
-            quote!(#name => visitor.piecewise::<#(#segments::)*#ty>(),),
+            quote!(#name => visitor.piecewise::<#(#segments::)*#ty>(#base),),
         )
     }
 }
@@ -179,8 +180,8 @@ mod tests {
             let entry = format!("Entry::{kind}(&{}::INFO)", inst.path);
             assert_eq!(text.matches(&entry).count(), 1, "{entry}\n{text}");
             let arm = format!(
-                "\"{}\" => visitor.{method}::<{}::{}>()",
-                inst.name, inst.path, inst.type_name
+                "\"{}\" => visitor.{method}::<{}::{}>(<{}::Params as ::core::default::Default>::default())",
+                inst.name, inst.path, inst.type_name, inst.path
             );
             assert_eq!(text.matches(&arm).count(), 1, "{arm}\n{text}");
         }

@@ -52,6 +52,7 @@ pub(super) fn smooth_items(e: &SmoothEquations) -> TokenStream {
                 doc: #docs,
                 params: &[#(#param_infos)*],
                 free: &[#(#free_idx)*],
+                source_hash: None,
             },
             law: #law_text,
             range: #range_lit,
@@ -63,8 +64,14 @@ pub(super) fn smooth_items(e: &SmoothEquations) -> TokenStream {
 
         #base
 
+        impl #type_ident {
+            /// The static description, [`SmoothModel::info`](::stickslip::SmoothModel::info) at every parameter set.
+            pub const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &INFO;
+        }
+
         impl ::stickslip::model::smooth::SmoothModel for #type_ident {
-            const INFO: &'static ::stickslip::model::smooth::SmoothInfo = &INFO;
+            #[inline]
+            fn info(_: &Params) -> &'static ::stickslip::model::smooth::SmoothInfo { &INFO }
             #[inline]
             fn belt(p: &Params) -> f64 {
                 #bstmts

@@ -13,7 +13,7 @@ use stickslip::study::map::GridAxis;
 use stickslip::Model;
 
 use super::axis;
-use crate::command::{params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 use crate::progress::with_progress;
 
@@ -46,8 +46,8 @@ struct Basins<'a> {
 
 impl Command for Basins<'_> {
     type Output = Answer;
-    fn run<M: Model>(self) -> Result<Answer, Failure> {
-        let p = params::<M>(&self.set)?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Answer, Failure> {
+        let p = params::<M>(base, &self.set)?;
         let opts = BasinOptions {
             resume: self.resume,
             ..BasinOptions::default()
@@ -100,7 +100,7 @@ impl Command for Basins<'_> {
 #[pyo3(signature = (model, set, x, v, out, phase = 0.0, samples = 1000, seed = 1, periods = None, lyapunov = None, resume = false, progress = true))]
 pub fn basins<'py>(
     py: Python<'py>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     x: Axis,
     v: Axis,
@@ -136,7 +136,7 @@ pub fn basins<'py>(
             resume,
             counter,
         };
-        with_model(model, cmd)
+        with_model(&model, cmd)
     })?;
     let (json, xs, vs, ids, exponents) = done?;
     Ok((

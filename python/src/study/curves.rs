@@ -5,7 +5,7 @@ use stickslip::output::curves_table;
 use stickslip::study::curves::{curves_with, CurvesOptions, CurvesSettings};
 use stickslip::Model;
 
-use crate::command::{params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::Failure;
 
 /// A side of the box as Python gives it: `(name, from, to)`.
@@ -22,8 +22,8 @@ struct Curves {
 
 impl Command for Curves {
     type Output = String;
-    fn run<M: Model>(self) -> Result<String, Failure> {
-        let base = params::<M>(&self.set)?;
+    fn run<M: Model>(self, base: M::Params) -> Result<String, Failure> {
+        let base = params::<M>(base, &self.set)?;
         let mut opts = CurvesOptions {
             x: (self.x.0, [self.x.1, self.x.2]),
             y: (self.y.0, [self.y.1, self.y.2]),
@@ -57,7 +57,7 @@ impl Command for Curves {
 #[pyo3(signature = (model, set, x, y, seeds = Vec::new(), at = Vec::new(), count = None, spread = None, max_mappings = None, probes = None, max_partners = None, edges = true))]
 pub fn curves(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     x: Side,
     y: Side,
@@ -87,5 +87,5 @@ pub fn curves(
             ..defaults
         },
     };
-    Ok(py.detach(|| with_model(model, cmd))?)
+    Ok(py.detach(|| with_model(&model, cmd))?)
 }

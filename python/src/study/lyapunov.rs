@@ -7,7 +7,7 @@ use stickslip::orbit::lyapunov::{spectrum, LyapunovOptions};
 use stickslip::output::lyapunov_report::LyapunovReport;
 use stickslip::Model;
 
-use crate::command::{params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::Failure;
 
 struct Lyapunov {
@@ -18,8 +18,8 @@ struct Lyapunov {
 
 impl Command for Lyapunov {
     type Output = String;
-    fn run<M: Model>(self) -> Result<String, Failure> {
-        let sim = Simulator::<M>::new(params::<M>(&self.set)?, SimOptions::default())?;
+    fn run<M: Model>(self, base: M::Params) -> Result<String, Failure> {
+        let sim = Simulator::<M>::new(params::<M>(base, &self.set)?, SimOptions::default())?;
         let s = spectrum(&sim, self.start, self.opts)?;
         Ok(serde_json::to_string_pretty(&LyapunovReport::of(
             &s, self.opts,
@@ -33,7 +33,7 @@ impl Command for Lyapunov {
 #[pyo3(signature = (model, set, start, transient = None, periods = None))]
 pub fn lyapunov(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     start: (f64, f64, f64),
     transient: Option<u32>,
@@ -48,5 +48,5 @@ pub fn lyapunov(
             periods: periods.unwrap_or(defaults.periods),
         },
     };
-    Ok(py.detach(|| with_model(model, cmd))?)
+    Ok(py.detach(|| with_model(&model, cmd))?)
 }

@@ -11,7 +11,7 @@ use stickslip::study::map::{run_map_counting, GridAxis, MapFile, MapMethod, MapO
 use stickslip::Model;
 
 use super::axis;
-use crate::command::{params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 use crate::progress::with_progress;
 
@@ -33,8 +33,8 @@ type Answer = (String, Vec<String>);
 
 impl Command for MapCmd<'_> {
     type Output = Answer;
-    fn run<M: Model>(self) -> Result<Answer, Failure> {
-        let base = params::<M>(&self.set)?;
+    fn run<M: Model>(self, base: M::Params) -> Result<Answer, Failure> {
+        let base = params::<M>(base, &self.set)?;
         let summary = run_map_counting::<M>(
             &base,
             &self.x,
@@ -108,7 +108,7 @@ fn document(file: &MapFile, summary: &Summary, opts: &MapOptions) -> Value {
 #[pyo3(signature = (model, set, x, y, out, method = "continuation", resume = false, progress = true))]
 pub fn map(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     x: Axis,
     y: Axis,
@@ -140,7 +140,7 @@ pub fn map(
             opts,
             counter,
         };
-        with_model(model, cmd)
+        with_model(&model, cmd)
     })?;
     Ok(done?)
 }

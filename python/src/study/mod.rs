@@ -12,7 +12,7 @@ use stickslip::study::map::{AxisError, GridAxis};
 use stickslip::study::sweep::{sweep_values, SweepOptions};
 use stickslip::Model;
 
-use crate::command::{params, with_model, Command};
+use crate::command::{params, with_model, Command, ModelSpec};
 use crate::failure::Failure;
 
 /// Add this module's functions.
@@ -65,7 +65,7 @@ struct Sweep {
 
 impl Command for Sweep {
     type Output = String;
-    fn run<M: Model>(self) -> Result<String, Failure> {
+    fn run<M: Model>(self, base: M::Params) -> Result<String, Failure> {
         let opts = SweepOptions {
             starts: self.starts,
             every: self.every,
@@ -73,7 +73,7 @@ impl Command for Sweep {
             max_period: self.max_period,
             ..SweepOptions::default()
         };
-        let base = params::<M>(&self.set)?;
+        let base = params::<M>(base, &self.set)?;
         let sw = sweep_values::<M>(base, &self.name, &self.values, opts)?;
         let sw = if self.unstable { sw } else { sw.stable_only() };
         Ok(sweep_table::json(&sw)?)
@@ -87,7 +87,7 @@ impl Command for Sweep {
 #[pyo3(signature = (model, set, name, values, starts = None, every = None, unstable = true, max_mappings = None, max_period = None))]
 pub fn sweep(
     py: Python<'_>,
-    model: &str,
+    model: ModelSpec,
     set: Vec<(String, f64)>,
     name: String,
     values: Vec<f64>,
@@ -113,5 +113,5 @@ pub fn sweep(
             Some(n) => Some(n),
         },
     };
-    Ok(py.detach(|| with_model(model, cmd))?)
+    Ok(py.detach(|| with_model(&model, cmd))?)
 }

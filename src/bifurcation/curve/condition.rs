@@ -29,7 +29,7 @@ use nalgebra::Matrix2;
 use super::Condition;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
-use crate::model::{MappingKind, Model};
+use crate::model::{MappingKind, Model, ModelInfo};
 use crate::orbit::admissible::{self, ConditionId, ViolationKind, SAME_EVENT};
 use crate::orbit::periodic::{arrival, monodromy, monodromy_spectral, SwitchingPoint};
 use crate::orbit::steady::steady_response;
@@ -65,7 +65,7 @@ pub(super) fn exit_rates<M: Model>(
     shift: f64,
     points: &[SwitchingPoint],
 ) -> f64 {
-    let info = M::INFO;
+    let info = M::info(p);
     let Some(bound) = M::static_bound(p) else {
         return 1.0;
     };
@@ -122,7 +122,7 @@ pub(super) fn rest_margin<M: Model>(p: &M::Params, j: usize, k: usize) -> f64 {
         return f64::NAN;
     };
     let vb = M::boundary_velocity(p, k);
-    let dom = M::INFO.domains[j];
+    let dom = M::info(p).domains[j];
     if dom.upper == Some(k) {
         vb - r.max_v
     } else {
@@ -166,11 +166,12 @@ pub(super) fn field_at_end<M: Model>(
     arrival: bool,
     rate: bool,
 ) -> f64 {
-    let mi = M::INFO.mappings[step];
+    let info = M::info(p);
+    let mi = info.mappings[step];
     let Some(j) = mi.domain else {
         return f64::NAN;
     };
-    let dom = M::INFO.domains[j];
+    let dom = info.domains[j];
     let k = if arrival { mi.to } else { mi.from };
     let [f, df] = M::normal_field(p, j, at.x, M::boundary_velocity(p, k), at.phase);
     let above = dom.lower == Some(k);
@@ -179,9 +180,8 @@ pub(super) fn field_at_end<M: Model>(
 }
 
 /// The domains next to boundary `k`.
-pub(super) fn neighbours<M: Model>(k: usize) -> impl Iterator<Item = usize> {
-    M::INFO
-        .domains
+pub(super) fn neighbours(info: &ModelInfo, k: usize) -> impl Iterator<Item = usize> + '_ {
+    info.domains
         .iter()
         .enumerate()
         .filter(move |(_, d)| d.lower == Some(k) || d.upper == Some(k))
@@ -243,7 +243,7 @@ impl<M: Model> Evaluator<M> {
         rest_domain: usize,
     ) -> Result<Self, String> {
         let sim = Simulator::<M>::new(*p, SimOptions::default()).map_err(|e| e.to_string())?;
-        let info = M::INFO;
+        let info = M::info(p);
         let mut walk_excluded = Vec::new();
         if let Some(s) = structure {
             for (k, &step) in s.steps().iter().enumerate() {
@@ -549,7 +549,7 @@ impl<M: Model> Evaluator<M> {
     ) -> (f64, Option<ConditionId>) {
         let key = |m: f64| if m.is_nan() { f64::NEG_INFINITY } else { m };
         if let Condition::RestGrazing { boundary } = self.condition {
-            let dom = M::INFO.domains[self.rest_domain];
+            let dom = M::info(p).domains[self.rest_domain];
             return [dom.lower, dom.upper]
                 .into_iter()
                 .flatten()
@@ -645,7 +645,7 @@ pub fn condition_scale<M: Model>(
     let osc = M::oscillator(p);
     let w = osc.frequency.abs();
     let mut v = 0.0f64;
-    for k in 0..M::INFO.boundaries.len() {
+    for k in 0..M::info(p).boundaries.len() {
         v = v.max(M::boundary_velocity(p, k).abs());
     }
     let length = || crate::orbit::periodic::PeriodicSolver::<M>::length_scale(p, points);

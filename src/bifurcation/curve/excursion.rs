@@ -38,7 +38,7 @@
 use crate::bifurcation::bordered::Correction;
 use crate::bifurcation::TransitionKind;
 use crate::dynamics::simulate::{SimOptions, Simulator};
-use crate::model::{MappingInfo, MappingKind, Model, ParamSet};
+use crate::model::{MappingInfo, MappingKind, Model, ModelInfo, ParamSet};
 use crate::orbit::admissible::{early_end, ViolationKind, SAME_EVENT};
 use crate::orbit::extrema::SegmentFlow;
 use crate::orbit::periodic::PeriodicSolver;
@@ -89,9 +89,8 @@ impl Excursion {
 }
 
 /// The excursions of `steps` shorter than [`SHORT`] at `x`, shortest first.
-fn excursions<M: Model>(steps: &[usize], shift: f64, x: &[f64]) -> Vec<Excursion> {
+fn excursions(info: &ModelInfo, steps: &[usize], shift: f64, x: &[f64]) -> Vec<Excursion> {
     let m = steps.len();
-    let info = M::INFO;
     let mut out: Vec<(f64, Excursion)> = Vec::new();
     if m < 3 {
         return Vec::new();
@@ -221,7 +220,7 @@ pub fn reduced_start<M: Model>(
     }
     let shift = std::f64::consts::TAU * structure.periods() as f64;
     let x = unknowns(start);
-    let e = excursions::<M>(steps, shift, &x)
+    let e = excursions(M::info(base), steps, shift, &x)
         .into_iter()
         .find(|e| shrinks(condition, e, m))?;
     let (k, after) = ((e.before + 1) % m, (e.before + 2) % m);
@@ -236,7 +235,7 @@ pub fn reduced_start<M: Model>(
         points.push(start.points[j]);
     }
     let periods = structure.periods();
-    let structure = Structure::from_indices(M::INFO, &reduced, periods).ok()?;
+    let structure = Structure::from_indices(M::info(base), &reduced, periods).ok()?;
     let guess = CurvePoint {
         points,
         ..start.clone()
@@ -275,7 +274,8 @@ pub fn reduced_start<M: Model>(
         }
     })?;
     let d = m / turns;
-    let structure = Structure::from_indices(M::INFO, &reduced[..d], periods / turns as u32).ok()?;
+    let structure =
+        Structure::from_indices(M::info(base), &reduced[..d], periods / turns as u32).ok()?;
     let mut y_t = y[..2 * d].to_vec();
     y_t.extend_from_slice(&y[n - 2..]);
     Some(ReducedStart {
@@ -324,9 +324,14 @@ impl<M: Model> Tracer<'_, M> {
     /// motion holding to [`SAME_EVENT`]. Returned in the curve's unknowns,
     /// the excursion's two switching points at the graze.
     pub(super) fn excursion_point(&mut self, prev: &Sample, bound: f64) -> Option<Sample> {
-        excursions::<M>(&self.sys.eval.steps, self.sys.eval.shift, &prev.x)
-            .into_iter()
-            .find_map(|e| self.reduced_point(prev, bound, &e))
+        excursions(
+            self.sys.eval.sim.info(),
+            &self.sys.eval.steps,
+            self.sys.eval.shift,
+            &prev.x,
+        )
+        .into_iter()
+        .find_map(|e| self.reduced_point(prev, bound, &e))
     }
 
     /// [`Self::excursion_point`] for the excursion `e`.
@@ -357,7 +362,8 @@ impl<M: Model> Tracer<'_, M> {
         y.extend([prev.x[n - 2], prev.x[n - 1]]);
         // The merged segment touches the boundary.
         let touch = e.touch(0);
-        let structure = Structure::from_indices(M::INFO, &reduced_steps, periods).ok()?;
+        let structure =
+            Structure::from_indices(self.sys.eval.sim.info(), &reduced_steps, periods).ok()?;
         let y = match self.solve_on(prev, bound, &structure, y.clone(), own, touch) {
             Some(y) => y,
             // A reduced motion of two equal halves, `T T`: where the motion
@@ -372,7 +378,8 @@ impl<M: Model> Tracer<'_, M> {
                 if half == 0 || first != second || periods % 2 != 0 {
                     return None;
                 }
-                let t = Structure::from_indices(M::INFO, first, periods / 2).ok()?;
+                let t =
+                    Structure::from_indices(self.sys.eval.sim.info(), first, periods / 2).ok()?;
                 let mut z: Vec<f64> = y[..2 * half].to_vec();
                 z.extend_from_slice(&y[y.len() - 2..]);
                 let pd = Condition::Eigen(TransitionKind::PeriodDoubling);
@@ -501,7 +508,7 @@ fn graze<M: Model>(
         let v0 = M::boundary_velocity(p, e.boundary);
         return Some((start[0] + v0 * (phase - start[1]) / osc.frequency, phase));
     }
-    let mi = M::INFO.mappings[e.merged];
+    let mi = M::info(p).mappings[e.merged];
     let flow = SegmentFlow::new(
         osc,
         M::coefficients(p, mi.domain?),

@@ -302,7 +302,6 @@ pub enum CurveError {
 mod tests {
     use super::*;
     use crate::models::paper::Paper;
-    use crate::Model;
 
     fn at(points: &[(f64, f64)]) -> CurvePoint {
         CurvePoint {

@@ -70,8 +70,8 @@ fn with<M: Model>(base: &M::Params, plane: &Plane, x: f64, y: f64) -> M::Params 
     p
 }
 
-fn check_plane<M: Model>(plane: &Plane) -> Result<(), CurveError> {
-    let count = <M::Params as ParamSet>::NAMES.len();
+fn check_plane<M: Model>(base: &M::Params, plane: &Plane) -> Result<(), CurveError> {
+    let count = base.names().len();
     if plane.x >= count || plane.y >= count || plane.x == plane.y {
         return Err(CurveError::Options(format!(
             "the plane's parameters must be two different indices below {count} (got {} and {})",
@@ -95,12 +95,12 @@ fn rest_domain<M: Model>(p: &M::Params, condition: Condition) -> Result<usize, C
     let Condition::RestGrazing { boundary } = condition else {
         return Ok(0);
     };
-    if boundary >= M::INFO.boundaries.len() {
+    if boundary >= M::info(p).boundaries.len() {
         return Err(CurveError::Options(format!(
             "boundary {boundary} does not exist"
         )));
     }
-    neighbours::<M>(boundary)
+    neighbours(M::info(p), boundary)
         .map(|j| (j, rest_margin::<M>(p, j, boundary).abs()))
         .filter(|(_, v)| v.is_finite())
         .min_by(|a, b| a.1.total_cmp(&b.1))
@@ -121,7 +121,7 @@ pub fn system<M: Model>(
     point: &CurvePoint,
     condition: Condition,
 ) -> Result<Extended<M>, CurveError> {
-    check_plane::<M>(plane)?;
+    check_plane::<M>(base, plane)?;
     match (condition, structure) {
         (Condition::RestGrazing { .. }, None) => {
             if !point.points.is_empty() {
@@ -561,7 +561,7 @@ pub(super) fn second_margins<M: Model>(
     let mut candidates: Vec<Condition> = Vec::new();
     for c in &walked {
         let boundaries: Vec<Option<usize>> = if c.kind == ViolationKind::Interior {
-            (0..M::INFO.boundaries.len()).map(Some).collect()
+            (0..M::info(&p).boundaries.len()).map(Some).collect()
         } else {
             vec![c.boundary]
         };
@@ -665,7 +665,7 @@ pub fn condition_at_transition<M: Model>(
     }
     let sim = Simulator::<M>::new(*p, SimOptions::default()).ok()?;
     let mut all = admissible::conditions(&sim, structure, points);
-    let info = M::INFO;
+    let info = M::info(p);
     // The smallest as the sweep saw it (a stick's end by the event search).
     let seen = all
         .iter()

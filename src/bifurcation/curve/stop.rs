@@ -224,7 +224,7 @@ impl<M: Model> Tracer<'_, M> {
                 (Some((kind, segment, boundary)), true) => format!(
                     "{why}; the {} margin of segment {segment}{} is {:.1e} there and falling: a codimension-two point lies ahead, not located",
                     transition_kind(kind).name(),
-                    boundary.map_or(String::new(), |b| format!(" on {}", M::INFO.boundaries[b].label)),
+                    boundary.map_or(String::new(), |b| format!(" on {}", self.sys.eval.sim.info().boundaries[b].label)),
                     prev.other
                 ),
                 _ => why,
@@ -400,7 +400,7 @@ impl<M: Model> Tracer<'_, M> {
         };
         let steps = &self.sys.eval.steps;
         let m = steps.len();
-        let info = M::INFO;
+        let info = self.sys.eval.sim.info();
         let mi = info.mappings[*steps.get(segment)?];
         let before = info.mappings[steps[(segment + m - 1) % m]];
         let ends = [
@@ -439,7 +439,7 @@ impl<M: Model> Tracer<'_, M> {
     ) -> Option<Sample> {
         let step = *self.sys.eval.steps.get(segment)?;
         // A flow segment only.
-        M::INFO.mappings[step].domain?;
+        self.sys.eval.sim.info().mappings[step].domain?;
         let field = |rate| Condition::NormalField {
             segment,
             arrival,

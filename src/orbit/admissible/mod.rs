@@ -87,7 +87,7 @@ impl<'a, M: Model> InteriorMargin<'a, M> {
     }
 
     fn consider(&mut self, v: f64, extremum: bool) {
-        let dom = M::INFO.domains[self.j];
+        let dom = self.sim.info().domains[self.j];
         for (side, k) in [dom.lower, dom.upper].into_iter().enumerate() {
             let Some(k) = k else { continue };
             if !extremum && self.touched.contains(&k) {
@@ -191,7 +191,7 @@ fn check_flow<M: Model>(
     mut margin: InteriorMargin<'_, M>,
 ) -> FlowCheck {
     let j = margin.j;
-    let dom = M::INFO.domains[j];
+    let dom = sim.info().domains[j];
     let co = sim.coefficients(j);
     let osc = sim.oscillator();
     let w = osc.frequency;
@@ -347,7 +347,7 @@ fn walk<M: Model>(
     points: &[SwitchingPoint],
     out: &mut impl Sink,
 ) {
-    let info = M::INFO;
+    let info = sim.info();
     let p = sim.params();
     let m = points.len();
     let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;

@@ -33,7 +33,7 @@
 //! exit's phase, and the motion's period-doubling curve runs into it).
 
 use crate::dynamics::simulate::Simulator;
-use crate::model::{MappingKind, Model, Oscillator};
+use crate::model::{MappingKind, Model, ModelInfo, Oscillator};
 use crate::orbit::periodic::{arrival, SwitchingPoint};
 use crate::orbit::structure::Structure;
 use std::cmp::Ordering;
@@ -77,7 +77,7 @@ pub(crate) fn stick_exit_rate<M: Model>(
     phi_a: f64,
     phi_b: f64,
 ) -> Option<f64> {
-    if M::INFO.stick_boundary() != Some(k)
+    if M::info(p).stick_boundary() != Some(k)
         || M::static_bound(p).is_none()
         || phi_a.partial_cmp(&phi_b) != Some(Ordering::Less)
     {
@@ -101,20 +101,21 @@ pub(crate) fn early_end_extremum<M: Model>(
     points: &[SwitchingPoint],
     segment: usize,
 ) -> Option<(f64, f64)> {
-    let (k, a, b) = stick_ends::<M>(structure, points, segment)?;
+    let (k, a, b) = stick_ends(sim.info(), structure, points, segment)?;
     early_end(sim, k, a.x, a.phase, b.phase).map(|(m, _, phi)| (m, phi - a.phase))
 }
 
 /// The boundary the stick `segment` of `structure` sticks on, its start and
 /// its exit at `points`; `None` if `segment` is no stick (or `points` do not
 /// fit the structure).
-fn stick_ends<M: Model>(
+fn stick_ends(
+    info: &ModelInfo,
     structure: &Structure,
     points: &[SwitchingPoint],
     segment: usize,
 ) -> Option<(usize, SwitchingPoint, SwitchingPoint)> {
     let step = *structure.steps().get(segment)?;
-    let mi = M::INFO.mappings[step];
+    let mi = info.mappings[step];
     if mi.kind != MappingKind::Stick || points.len() != structure.len() {
         return None;
     }
@@ -141,7 +142,7 @@ pub(crate) fn end_touch<M: Model>(
     points: &[SwitchingPoint],
     segment: usize,
 ) -> Option<f64> {
-    let (k, a, b) = stick_ends::<M>(structure, points, segment)?;
+    let (k, a, b) = stick_ends(sim.info(), structure, points, segment)?;
     let (stick, bound) = sim.stick()?;
     if stick != k {
         return None;

@@ -134,7 +134,7 @@ pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Optio
     let mut steps = Vec::with_capacity(window.len() - 1);
     let (mut stick, mut slip) = (0.0, 0.0);
     for pair in window.windows(2) {
-        steps.push(mapping_between::<M>(&pair[0], &pair[1])?);
+        steps.push(mapping_between(sim.info(), &pair[0], &pair[1])?);
         let dt = (pair[1].phase - pair[0].phase) / osc.frequency;
         if pair[0].after == Location::Stick {
             stick += dt;
@@ -193,8 +193,7 @@ pub fn permanent_stick<M: Model>(sim: &Simulator<M>, seg: &Segment) -> Option<Pe
 }
 
 /// The mapping that the segment between two events follows.
-pub fn mapping_between<M: Model>(before: &Event, after: &Event) -> Option<usize> {
-    let info = M::INFO;
+pub fn mapping_between(info: &ModelInfo, before: &Event, after: &Event) -> Option<usize> {
     match before.after {
         Location::Domain(j) => info.mappings.iter().position(|m| {
             m.domain == Some(j) && m.from == before.boundary && m.to == after.boundary
@@ -240,7 +239,7 @@ pub fn no_motion_certificate<M: Model>(
     };
     let h = y0.abs() + (c * x0 + d * y0).abs() * s;
     let amplitude = w * a.hypot(b);
-    let dom = M::INFO.domains[j];
+    let dom = sim.info().domains[j];
     let hi_ok = dom.upper.is_none_or(|k| amplitude + h < sim.velocity(k));
     let lo_ok = dom.lower.is_none_or(|k| -amplitude - h > sim.velocity(k));
     (hi_ok && lo_ok && h.is_finite()).then_some(NoMotion {
@@ -260,13 +259,13 @@ fn candidate<M: Model>(
     periods: u32,
     newton: NewtonOptions,
 ) -> Result<Motion, OrbitError> {
-    let info = M::INFO;
+    let info = sim.info();
     let n = events.len();
     let window = &events[n - 1 - m..];
     let mut steps = Vec::with_capacity(m);
     let mut points = Vec::with_capacity(m);
     for i in 0..m {
-        let idx = mapping_between::<M>(&window[i], &window[i + 1]).ok_or_else(|| {
+        let idx = mapping_between(sim.info(), &window[i], &window[i + 1]).ok_or_else(|| {
             OrbitError::Guess(format!(
                 "the simulated motion uses a mapping that `{}` does not generate (after the event at W t = {})",
                 info.name, window[i].phase
@@ -341,7 +340,7 @@ pub fn find_or_stop<M: Model, T>(
         return Ok(Settle::Stopped(t));
     }
     strobe += TAU;
-    let cap = opts.cycle_cap(M::INFO);
+    let cap = opts.cycle_cap(sim.info());
     let mut seg = start;
     let mut events: Vec<Event> = Vec::new();
     // Enough events for cycles of up to 2 cap mappings, and of longer ones
@@ -472,7 +471,7 @@ pub fn find_or_stop<M: Model, T>(
         }
     }
     let undamped =
-        (0..M::INFO.domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
+        (0..sim.info().domains.len()).all(|j| M::coefficients(sim.params(), j).two_d == 0.0);
     if undamped {
         if let Some(motion) = neutral_edge(sim, &events, cap, opts.newton) {
             return settled(Attractor::Periodic(motion));
@@ -509,7 +508,7 @@ fn neutral_edge<M: Model>(
     cap: usize,
     newton: NewtonOptions,
 ) -> Option<Motion> {
-    let info = M::INFO;
+    let info = sim.info();
     for tol in [1e-4, 1e-3, 1e-2] {
         let Some((m, periods)) = detect_cycle(events, cap, tol) else {
             continue;
@@ -521,7 +520,7 @@ fn neutral_edge<M: Model>(
         // The point that starts the next kept mapping: a stick's onset.
         let mut pending: Option<SwitchingPoint> = None;
         for i in 0..m {
-            let idx = mapping_between::<M>(&window[i], &window[i + 1])?;
+            let idx = mapping_between(sim.info(), &window[i], &window[i + 1])?;
             let here = SwitchingPoint {
                 phase: window[i].phase,
                 x: window[i].x,
@@ -672,7 +671,7 @@ pub fn primitive<M: Model>(sim: &Simulator<M>, motion: Motion, newton: NewtonOpt
                 && (b.x - a.x).abs() < 1e-8 * (1.0 + a.x.abs())
         });
         if repeats && n * q / m >= 1 {
-            let Ok(short) = Structure::from_indices(M::INFO, &steps[..q], (n * q / m) as u32)
+            let Ok(short) = Structure::from_indices(sim.info(), &steps[..q], (n * q / m) as u32)
             else {
                 continue;
             };
@@ -717,7 +716,7 @@ pub fn seed<M: Model>(sim: &Simulator<M>, structure: &Structure) -> Option<Vec<S
             }
             let maps: Vec<Option<usize>> = events
                 .windows(2)
-                .map(|w| mapping_between::<M>(&w[0], &w[1]))
+                .map(|w| mapping_between(sim.info(), &w[0], &w[1]))
                 .collect();
             // Latest window matching the structure (the transient has decayed most there).
             for s in (0..maps.len().saturating_sub(m - 1)).rev() {

@@ -13,7 +13,7 @@
 use rayon::prelude::*;
 
 use crate::dynamics::simulate::Simulator;
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 use crate::orbit::known::{settle, KnownMotions, Settled};
 use crate::orbit::lyapunov::{spectrum, LyapunovOptions, Verdict};
@@ -108,9 +108,9 @@ pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
             .filter(|o| o.structure == m.structure)
             .collect();
         let label = if twins.len() > 1 {
-            distinct_label::<M>(m, &twins)
+            distinct_label(sim.info(), m, &twins)
         } else {
-            motion_label::<M>(m)
+            motion_label(sim.info(), m)
         };
         known.motions.insert(sim, known.labels.len(), m);
         known.labels.push(label);
@@ -123,7 +123,7 @@ pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
 /// structure followed by its first switching point's `x`, with as many
 /// digits (at least 4) as tell the twins apart, e.g.
 /// `P_{0_11 1_11 0_11 2_11} (x1 = 1.4508)`.
-pub fn distinct_label<M: Model>(motion: &Motion, twins: &[&Motion]) -> String {
+pub fn distinct_label(info: &ModelInfo, motion: &Motion, twins: &[&Motion]) -> String {
     let x = |m: &Motion| m.points.first().map_or(f64::NAN, |p| p.x);
     let digits = (4..=12)
         .find(|&d| {
@@ -136,16 +136,16 @@ pub fn distinct_label<M: Model>(motion: &Motion, twins: &[&Motion]) -> String {
         .unwrap_or(12);
     format!(
         "{} (x1 = {:.*})",
-        motion_label::<M>(motion),
+        motion_label(info, motion),
         digits,
         x(motion)
     )
 }
 
 /// The label of an attractor found by a full search.
-pub fn attractor_label<M: Model>(a: &Attractor) -> String {
+pub fn attractor_label(info: &ModelInfo, a: &Attractor) -> String {
     match a {
-        Attractor::Periodic(m) => motion_label::<M>(m),
+        Attractor::Periodic(m) => motion_label(info, m),
         Attractor::NoMotion(_) => NO_MOTION.to_string(),
         Attractor::Stick(_) => STICK.to_string(),
         Attractor::Autonomous(_) => "autonomous cycle".to_string(),
@@ -166,7 +166,7 @@ pub fn classify<M: Model>(
             let settling = settle(sim, &known.motions, seg, attractor_options(header.periods));
             match settling.outcome {
                 Ok(Settled::Known(id)) => (known.labels[id].clone(), None),
-                Ok(Settled::Attractor(a)) => (settled_label::<M>(known, &a), None),
+                Ok(Settled::Attractor(a)) => (settled_label(sim.info(), known, &a), None),
                 Err(OrbitError::Unsettled { .. }) => irregular(sim, header, (x, v)),
                 Err(OrbitError::Inadmissible(_)) => ("inadmissible".to_string(), None),
                 Err(OrbitError::NotConverged(_)) => ("not_converged".to_string(), None),
@@ -188,9 +188,9 @@ pub fn classify<M: Model>(
 /// The label of an attractor a start settled on without a certificate:
 /// a known motion's label if it is that motion, else its own, told apart
 /// from a known motion of its structure by its first switching point.
-fn settled_label<M: Model>(known: &Known, a: &Attractor) -> String {
+fn settled_label(info: &ModelInfo, known: &Known, a: &Attractor) -> String {
     let Attractor::Periodic(m) = a else {
-        return attractor_label::<M>(a);
+        return attractor_label(info, a);
     };
     if let Some(i) = known
         .found
@@ -206,9 +206,9 @@ fn settled_label<M: Model>(known: &Known, a: &Attractor) -> String {
         .chain(std::iter::once(m))
         .collect();
     if twins.len() > 1 {
-        distinct_label::<M>(m, &twins)
+        distinct_label(info, m, &twins)
     } else {
-        attractor_label::<M>(a)
+        attractor_label(info, a)
     }
 }
 

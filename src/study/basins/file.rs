@@ -119,7 +119,7 @@ impl BasinHeader {
         lyapunov: u32,
     ) -> Self {
         Self {
-            model: M::INFO.name.to_string(),
+            model: M::info(params).name.to_string(),
             x: x.clone(),
             v: v.clone(),
             phase,
@@ -127,7 +127,8 @@ impl BasinHeader {
             seed,
             periods,
             lyapunov,
-            params: M::Params::NAMES
+            params: params
+                .names()
                 .iter()
                 .enumerate()
                 .map(|(i, n)| (n.to_string(), params.get(i)))

@@ -27,7 +27,7 @@ use crate::bifurcation::curve::{
     trace_watching, Condition, Curve, CurveEnd, CurveEndReason, Line, Plane, PARTNER_STEP,
 };
 use crate::bifurcation::transition_kind;
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::structure::Structure;
 use crate::study::sweep::SweepOptions;
 
@@ -65,10 +65,10 @@ pub(super) struct Cover<'a, M: Model> {
     _model: std::marker::PhantomData<M>,
 }
 
-fn same_structure<M: Model>(a: Option<&Structure>, b: Option<&Structure>) -> bool {
+fn same_structure(info: &ModelInfo, a: Option<&Structure>, b: Option<&Structure>) -> bool {
     match (a, b) {
         (None, None) => true,
-        (Some(a), Some(b)) => a.canonical(M::INFO).0 == b.canonical(M::INFO).0,
+        (Some(a), Some(b)) => a.canonical(info).0 == b.canonical(info).0,
         _ => false,
     }
 }
@@ -292,7 +292,11 @@ impl<'a, M: Model> Cover<'a, M> {
         self.curves.iter().any(|c| {
             if c.kind != start.kind
                 || c.boundary != start.boundary
-                || !same_structure::<M>(c.structure.as_ref(), start.structure.as_ref())
+                || !same_structure(
+                    M::info(self.base),
+                    c.structure.as_ref(),
+                    start.structure.as_ref(),
+                )
             {
                 return false;
             }
@@ -578,7 +582,7 @@ impl<'a, M: Model> Cover<'a, M> {
         self.curves.iter().any(|c| {
             let own = match &c.structure {
                 None => "NM".to_string(),
-                Some(s) => s.notation(M::INFO),
+                Some(s) => s.notation(M::info(self.base)),
             };
             own == name
                 && c.points.iter().any(|p| {
@@ -601,8 +605,8 @@ impl<'a, M: Model> Cover<'a, M> {
                 kind: start.kind,
                 boundary: start
                     .boundary
-                    .map(|k| M::INFO.boundaries[k].label.to_string()),
-                structure: structure_name::<M>(start.structure.as_ref()),
+                    .map(|k| M::info(self.base).boundaries[k].label.to_string()),
+                structure: structure_name(M::info(self.base), start.structure.as_ref()),
                 point: [start.point.x, start.point.y],
                 why: why.clone(),
             })
@@ -618,7 +622,7 @@ impl<'a, M: Model> Cover<'a, M> {
             (
                 c.kind.name(),
                 c.boundary,
-                structure_name::<M>(c.structure.as_ref()),
+                structure_name(M::info(self.base), c.structure.as_ref()),
                 first,
             )
         };
@@ -666,8 +670,10 @@ impl<'a, M: Model> Cover<'a, M> {
                     .collect();
                 CurveSummary {
                     kind: c.kind,
-                    boundary: c.boundary.map(|k| M::INFO.boundaries[k].label.to_string()),
-                    structure: structure_name::<M>(c.structure.as_ref()),
+                    boundary: c
+                        .boundary
+                        .map(|k| M::info(self.base).boundaries[k].label.to_string()),
+                    structure: structure_name(M::info(self.base), c.structure.as_ref()),
                     from: end(0),
                     to: end(1),
                     points: c.points.iter().map(|p| [p.x, p.y]).collect(),

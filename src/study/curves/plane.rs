@@ -52,17 +52,19 @@ impl CurvesOptions {
     pub fn plane<M: Model>(&self, base: &M::Params) -> Result<Plane, CurvesError> {
         // The parameter set holds the free parameters alone (a scene's
         // fixed ones are constants), indexed by their place among them.
+        let info = M::info(base);
         let index = |name: &str| {
-            <M::Params as ParamSet>::index_of(name).ok_or_else(|| CurvesError::UnknownParam {
-                name: name.to_string(),
-                model: M::INFO.name.to_string(),
-                free: M::INFO
-                    .free
-                    .iter()
-                    .map(|&i| M::INFO.params[i].name)
-                    .collect::<Vec<_>>()
-                    .join(", "),
-            })
+            base.index_of(name)
+                .ok_or_else(|| CurvesError::UnknownParam {
+                    name: name.to_string(),
+                    model: info.name.to_string(),
+                    free: info
+                        .free
+                        .iter()
+                        .map(|&i| info.params[i].name)
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })
         };
         let (x, y) = (index(&self.x.0)?, index(&self.y.0)?);
         if x == y {

@@ -8,7 +8,7 @@ use crate::bifurcation::curve::{
 };
 use crate::bifurcation::{EndReason, TransitionKind};
 use crate::model::param::ParamSet;
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::periodic::SwitchingPoint;
 use crate::orbit::structure::Structure;
 use crate::study::sweep::{sweep_branches, SweepError, SweepOptions};
@@ -42,10 +42,10 @@ pub(super) struct LineSweep {
 }
 
 /// `P_{...}`, with `^N` for N > 1 forcing periods; `NM` for none.
-pub(super) fn structure_name<M: Model>(s: Option<&Structure>) -> String {
+pub(super) fn structure_name(info: &ModelInfo, s: Option<&Structure>) -> String {
     match s {
         None => "NM".into(),
-        Some(s) => s.label(M::INFO),
+        Some(s) => s.label(info),
     }
 }
 
@@ -78,7 +78,7 @@ pub(super) fn sweep_line<M: Model>(
         Line::Y(v) => fixed.set(plane.y, v),
         Line::X(v) => fixed.set(plane.x, v),
     }
-    let name = <M::Params as ParamSet>::NAMES[swept];
+    let name = base.names()[swept];
     let (sw, branches) = sweep_branches::<M>(fixed, name, lo, hi, count, opts)?;
     let on_line = |value: f64, points: &[SwitchingPoint]| match line {
         Line::Y(y) => CurvePoint {
@@ -134,7 +134,7 @@ pub(super) fn sweep_line<M: Model>(
     // grazing condition vanishes there.
     for t in sw.transitions.iter().filter(|t| t.from == "NM") {
         let point = on_line(t.value, &[]);
-        let grazed = (0..M::INFO.boundaries.len())
+        let grazed = (0..M::info(base).boundaries.len())
             .filter_map(|k| {
                 let c = Condition::RestGrazing { boundary: k };
                 let v = condition_value::<M>(base, plane, None, &point, c).ok()?;

@@ -124,10 +124,10 @@ pub fn orbit_diagram<M: Model>(
     count: usize,
     opts: DiagramOptions,
 ) -> Result<OrbitDiagram, DiagramError> {
-    let index = M::Params::index_of(name).ok_or_else(|| ParamError::Unknown {
+    let index = base.index_of(name).ok_or_else(|| ParamError::Unknown {
         name: name.to_string(),
-        model: M::INFO.name.to_string(),
-        known: M::Params::NAMES.join(", "),
+        model: M::info(&base).name.to_string(),
+        known: base.names().join(", "),
     })?;
     if opts.periods == 0 {
         return Err(DiagramError::NoSamples);

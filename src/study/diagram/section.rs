@@ -46,7 +46,7 @@ pub struct BranchSection {
 
 /// Every branch of `sweep` (a sweep of `M` at `base` over its parameter) at the section.
 pub fn branch_sections<M: Model>(base: M::Params, sweep: &Sweep) -> Vec<BranchSection> {
-    let Some(index) = M::Params::index_of(&sweep.param) else {
+    let Some(index) = base.index_of(&sweep.param) else {
         return Vec::new();
     };
     sweep
@@ -61,7 +61,7 @@ fn branch_section<M: Model>(
     index: usize,
     b: &BranchSummary,
 ) -> Option<BranchSection> {
-    let structure = Structure::parse(M::INFO, &b.structure, b.n).ok()?;
+    let structure = Structure::parse(M::info(&base), &b.structure, b.n).ok()?;
     let points = b
         .points
         .iter()

@@ -5,7 +5,7 @@ const TAU: f64 = 2.0 * std::f64::consts::PI;
 
 use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::param::ParamSet;
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
 use crate::orbit::lyapunov::{spectrum, LyapunovOptions, Verdict};
 use crate::orbit::motion::{Motion, OrbitError};
@@ -18,13 +18,13 @@ use super::grid::GridAxis;
 use super::{MAX_PERIODS, NO_MOTION, STICK};
 
 /// The motion's name on the map: its structure, with `^N` for `N > 1`.
-pub fn motion_label<M: Model>(motion: &Motion) -> String {
-    structure_label::<M>(&motion.structure)
+pub fn motion_label(info: &ModelInfo, motion: &Motion) -> String {
+    structure_label(info, &motion.structure)
 }
 
 /// The name on the map of a motion of `structure` (see [`motion_label`]).
-pub(super) fn structure_label<M: Model>(structure: &Structure) -> String {
-    structure.label(M::INFO)
+pub(super) fn structure_label(info: &ModelInfo, structure: &Structure) -> String {
+    structure.label(info)
 }
 
 /// Whether two motions are the same orbit: same structure and period, and
@@ -46,7 +46,7 @@ fn same_motion(a: &Motion, b: &Motion) -> bool {
 }
 
 /// Short text for a start that did not settle.
-pub(super) fn failure<M: Model>(e: &OrbitError) -> String {
+pub(super) fn failure(info: &ModelInfo, e: &OrbitError) -> String {
     match e {
         OrbitError::Unsettled { periods, .. } => format!("unsettled ({periods} periods)"),
         OrbitError::NotConverged(Termination::NotConverged { reason, .. }) => {
@@ -56,7 +56,7 @@ pub(super) fn failure<M: Model>(e: &OrbitError) -> String {
             format!("not_converged (singular: {reason})")
         }
         OrbitError::Inadmissible(m) => {
-            format!("inadmissible ({})", motion_label::<M>(m))
+            format!("inadmissible ({})", motion_label(info, m))
         }
         OrbitError::Simulation(e) => format!("simulation_error ({e})"),
         other => format!("error ({other})"),
@@ -77,7 +77,7 @@ pub(super) fn unsettled<M: Model>(
         periods: UNSETTLED_PERIODS,
     };
     let Ok(s) = spectrum(sim, start, opts) else {
-        return failure::<M>(e);
+        return failure(sim.info(), e);
     };
     let (l, err) = (s.exponents[0], s.error);
     match s.verdict {
@@ -89,11 +89,11 @@ pub(super) fn unsettled<M: Model>(
         Verdict::Periodic { structure, n } => {
             format!(
                 "{} (settles later on {})",
-                failure::<M>(e),
+                failure(sim.info(), e),
                 with_periods(&structure, n)
             )
         }
-        Verdict::NoMotion | Verdict::Stick => failure::<M>(e),
+        Verdict::NoMotion | Verdict::Stick => failure(sim.info(), e),
     }
 }
 
@@ -103,7 +103,7 @@ const UNSETTLED_PERIODS: u32 = 2000;
 /// The two starts of every grid point: rest, and `v` one above the stick
 /// boundary (or the highest boundary) half a forcing period later.
 pub(super) fn starts<M: Model>(sim: &Simulator<M>) -> [(f64, f64, f64); 2] {
-    let info = M::INFO;
+    let info = sim.info();
     let k = info
         .stick_boundary()
         .unwrap_or(info.boundaries.len().saturating_sub(1));
@@ -169,10 +169,10 @@ pub(super) fn point_params<M: Model>(
     let (x, y) = (x_axis.value(ix), y_axis.value(iy));
     let mut p = *base;
     for (axis, value) in [(x_axis, x), (y_axis, y)] {
-        match M::Params::index_of(&axis.name) {
+        match base.index_of(&axis.name) {
             Some(i) => p.set(i, value),
             None => {
-                let e = match axis.check_for::<M>() {
+                let e = match axis.check_for::<M>(base) {
                     Err(e) => e.to_string(),
                     Ok(()) => format!("`{}` is not a run-time parameter", axis.name),
                 };
@@ -229,10 +229,10 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
                 k + 1,
                 unsettled::<M>(&sim, (x0, v0, phase0), &e)
             )),
-            Err(e) => problems.push(format!("start {}: {}", k + 1, failure::<M>(&e))),
+            Err(e) => problems.push(format!("start {}: {}", k + 1, failure(sim.info(), &e))),
         }
     }
-    let mut motions: Vec<String> = found.iter().map(motion_label::<M>).collect();
+    let mut motions: Vec<String> = found.iter().map(|m| motion_label(sim.info(), m)).collect();
     if no_motion {
         motions.push(NO_MOTION.to_string());
     }

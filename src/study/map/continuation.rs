@@ -42,7 +42,7 @@
 use std::collections::BTreeSet;
 
 use crate::dynamics::simulate::{SimOptions, Simulator};
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::admissible::worst_margin;
 use crate::orbit::attractor::{self, no_motion_certificate, Attractor, AttractorOptions};
 use crate::orbit::known::{self, guard_margin, KnownMotions, Settled};
@@ -143,7 +143,7 @@ impl<M: Model> Continuer<M> {
         if margin.margin.is_nan() || margin.margin <= 0.0 {
             return None;
         }
-        let dp = solver.poincare_jacobian_at_solution().ok()?;
+        let dp = solver.poincare_jacobian_at_solution(sim.params()).ok()?;
         let stability = Stability::of(&dp);
         stability
             .is_stable()
@@ -157,7 +157,7 @@ impl<M: Model> Continuer<M> {
 /// decaying part is zero). Every start near it stays: a damped linear flow.
 pub fn no_motion_exists<M: Model>(sim: &Simulator<M>) -> bool {
     let w = sim.oscillator().frequency;
-    (0..M::INFO.domains.len()).any(|j| {
+    (0..sim.info().domains.len()).any(|j| {
         // The forced response at phase 0 (`c = 0`: no finite response).
         steady_response::<M>(sim.params(), j).is_some_and(|r| {
             let (x, v) = (r.a + r.offset, w * r.b);
@@ -198,7 +198,7 @@ impl<M: Model> Cell<M> {
         let Some(sim) = self.sim.as_ref() else {
             return;
         };
-        let scale = (0..M::INFO.boundaries.len())
+        let scale = (0..sim.info().boundaries.len())
             .map(|k| sim.velocity(k).abs())
             .fold(1.0_f64, f64::max);
         let wm = guard_margin(sim, &motion);
@@ -270,7 +270,7 @@ fn continue_into<M: Model>(
     let mut label = label.to_string();
     if is_repetition(&found.structure) {
         found = attractor::primitive(sim, found, NewtonOptions::default());
-        label = structure_label::<M>(&found.structure);
+        label = structure_label(sim.info(), &found.structure);
         if cell.has(&label) {
             return Some(false);
         }
@@ -280,13 +280,17 @@ fn continue_into<M: Model>(
 }
 
 /// Add what a simulation settled to; `Err` for a start that did not settle.
-fn take<M: Model>(cell: &mut Cell<M>, found: Result<Settled, OrbitError>) -> Result<(), String> {
+fn take<M: Model>(
+    info: &ModelInfo,
+    cell: &mut Cell<M>,
+    found: Result<Settled, OrbitError>,
+) -> Result<(), String> {
     match found {
         Ok(Settled::Known(_)) => Ok(()),
         Ok(Settled::Attractor(a)) => {
             match *a {
                 Attractor::Periodic(m) => {
-                    let label = structure_label::<M>(&m.structure);
+                    let label = structure_label(info, &m.structure);
                     if !cell.has(&label) {
                         cell.add(label, m);
                     }
@@ -303,7 +307,7 @@ fn take<M: Model>(cell: &mut Cell<M>, found: Result<Settled, OrbitError>) -> Res
             }
             Ok(())
         }
-        Err(e) => Err(failure::<M>(&e)),
+        Err(e) => Err(failure(info, &e)),
     }
 }
 
@@ -340,12 +344,12 @@ fn settle_cell<M: Model>(cell: &mut Cell<M>, lost: &[&Motion]) {
             problems.push(format!("start {}: {what}", k + 1));
             continue;
         }
-        if let Err(e) = take(cell, found) {
+        if let Err(e) = take(sim.info(), cell, found) {
             problems.push(format!("start {}: {e}", k + 1));
         }
     }
     for motion in lost {
-        let label = structure_label::<M>(&motion.structure);
+        let label = structure_label(sim.info(), &motion.structure);
         if cell.has(&label) || motion.points.is_empty() {
             continue;
         }
@@ -353,7 +357,11 @@ fn settle_cell<M: Model>(cell: &mut Cell<M>, lost: &[&Motion]) {
         let known = known_at(&sim, cell, seg.phase);
         // What the lost motion becomes; a start that does not settle is no
         // start of the simulation method, so it does not change the status.
-        let _ = take(cell, known::settle(&sim, &known, seg, opts).outcome);
+        let _ = take(
+            sim.info(),
+            cell,
+            known::settle(&sim, &known, seg, opts).outcome,
+        );
     }
     cell.status = if problems.is_empty() {
         "ok".to_string()

@@ -161,6 +161,10 @@ fn split_csv(line: &str) -> Result<Vec<String>, String> {
 pub struct MapHeader {
     /// Model (or scene) name.
     pub model: String,
+    /// For a model loaded from a file at run time, the file's content hash
+    /// (`model::loaded::content_hash`): a resume or merge with another
+    /// file's model is refused. `None` for a compiled-in model.
+    pub source: Option<u64>,
     /// The x axis.
     pub x: GridAxis,
     /// The y axis.
@@ -186,14 +190,18 @@ impl MapHeader {
         method: MapMethod,
         shard: Option<Shard>,
     ) -> Self {
-        let base = M::Params::NAMES
+        let names = base.names();
+        let info = M::info(base);
+        let model = info.name.to_string();
+        let base = names
             .iter()
             .enumerate()
             .filter(|(_, n)| **n != x.name && **n != y.name)
             .map(|(i, n)| (n.to_string(), base.get(i)))
             .collect();
         Self {
-            model: M::INFO.name.to_string(),
+            model,
+            source: info.source_hash,
             x: x.clone(),
             y: y.clone(),
             base,
@@ -220,10 +228,11 @@ impl MapHeader {
             .map(|(n, v)| format!("{n}={v}"))
             .collect::<Vec<_>>()
             .join(",");
-        let mut s = format!(
-            "{MAGIC} model={} x={} y={} base={base}",
-            self.model, self.x, self.y
-        );
+        let mut s = format!("{MAGIC} model={}", self.model);
+        if let Some(hash) = self.source {
+            let _ = write!(s, " source={hash:016x}");
+        }
+        let _ = write!(s, " x={} y={} base={base}", self.x, self.y);
         if let Some(method) = self.method {
             let _ = write!(s, " method={}", method.name());
         }
@@ -245,6 +254,7 @@ impl MapHeader {
             .strip_prefix(MAGIC)
             .ok_or_else(|| format!("the first line does not start with `{MAGIC}`"))?;
         let (mut model, mut x, mut y, mut base, mut shard) = (None, None, None, None, None);
+        let mut source = None;
         let mut method = None;
         for token in rest.split_whitespace() {
             let (key, value) = token
@@ -252,6 +262,12 @@ impl MapHeader {
                 .ok_or_else(|| format!("`{token}` in the header is not KEY=VALUE"))?;
             match key {
                 "model" => model = Some(value.to_string()),
+                "source" => {
+                    source =
+                        Some(u64::from_str_radix(value, 16).map_err(|_| {
+                            format!("`{value}` in the header is not a content hash")
+                        })?)
+                }
                 "x" => x = Some(GridAxis::parse(value).map_err(|e| e.to_string())?),
                 "y" => y = Some(GridAxis::parse(value).map_err(|e| e.to_string())?),
                 "base" => {
@@ -279,6 +295,7 @@ impl MapHeader {
         let missing = |what: &str| format!("the header lacks `{what}=`");
         Ok(Self {
             model: model.ok_or_else(|| missing("model"))?,
+            source,
             x: x.ok_or_else(|| missing("x"))?,
             y: y.ok_or_else(|| missing("y"))?,
             base: base.ok_or_else(|| missing("base"))?,
@@ -291,6 +308,17 @@ impl MapHeader {
     pub(super) fn grid_difference(&self, other: &Self) -> Option<String> {
         if self.model != other.model {
             return Some(format!("model `{}`, not `{}`", other.model, self.model));
+        }
+        if self.source != other.source {
+            let show = |h: Option<u64>| match h {
+                Some(h) => format!("the model file of content hash {h:016x}"),
+                None => "the compiled-in model".to_string(),
+            };
+            return Some(format!(
+                "{}, not {}: a different model file",
+                show(other.source),
+                show(self.source)
+            ));
         }
         if self.x != other.x {
             return Some(format!("x axis {}, not {}", other.x, self.x));

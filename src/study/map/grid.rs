@@ -62,11 +62,11 @@ impl GridAxis {
         })
     }
 
-    /// Parse `NAME=FROM:TO:COUNT` for model `M`: `NAME` must be one of its
-    /// run-time parameters ([`ParamSet::NAMES`]).
-    pub fn parse_for<M: Model>(text: &str) -> Result<Self, AxisError> {
+    /// Parse `NAME=FROM:TO:COUNT` for model `M` at `base`: `NAME` must be
+    /// one of its run-time parameters ([`ParamSet::names`]).
+    pub fn parse_for<M: Model>(base: &M::Params, text: &str) -> Result<Self, AxisError> {
         let axis = Self::parse(text)?;
-        axis.check_for::<M>()
+        axis.check_for::<M>(base)
             .map_err(|source| AxisError::Parameter {
                 text: text.to_string(),
                 source,
@@ -74,13 +74,13 @@ impl GridAxis {
         Ok(axis)
     }
 
-    /// Whether the axis's parameter is a run-time parameter of `M`.
-    pub fn check_for<M: Model>(&self) -> Result<(), ParamError> {
-        if M::Params::index_of(&self.name).is_some() {
+    /// Whether the axis's parameter is a run-time parameter of `M` (at `base`).
+    pub fn check_for<M: Model>(&self, base: &M::Params) -> Result<(), ParamError> {
+        if base.index_of(&self.name).is_some() {
             return Ok(());
         }
-        let info = M::INFO;
-        let free = M::Params::NAMES.join(", ");
+        let info = M::info(base);
+        let free = base.names().join(", ");
         Err(match info.params.iter().find(|p| p.name == self.name) {
             Some(p) => ParamError::Fixed {
                 name: self.name.clone(),

@@ -134,7 +134,7 @@ pub fn run_map_counting<M: Model>(
 ) -> Result<Summary, MapError> {
     let start = Instant::now();
     for axis in [x_axis, y_axis] {
-        axis.check_for::<M>()
+        axis.check_for::<M>(base)
             .map_err(|source| AxisError::Parameter {
                 text: axis.spec(),
                 source,

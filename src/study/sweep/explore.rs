@@ -279,14 +279,14 @@ impl<'a, M: Model> Explorer<'a, M> {
             let old = motion_of(&structure, &end.at);
             let edge = end.at.value;
             let (past, found) = self.past(edge, dir, &old);
-            let to = settle::name::<M>(&found);
+            let to = settle::name(M::info(self.base), &found);
             if let Some(kind) = kind {
                 self.transitions.push(Transition {
                     value: edge,
-                    from: structure.notation(M::INFO),
+                    from: structure.notation(M::info(self.base)),
                     to,
                     kind,
-                    boundary: boundary.map(|i| M::INFO.boundaries[i].label.to_string()),
+                    boundary: boundary.map(|i| M::info(self.base).boundaries[i].label.to_string()),
                 });
             }
             self.found(past, &found);
@@ -332,13 +332,13 @@ impl<'a, M: Model> Explorer<'a, M> {
             let b = &self.branches[id];
             let bif = &b.bifurcations[which];
             let starts = born::<M>(self.base, self.index, b, bif, &self.continuation);
-            let from = b.structure.notation(M::INFO);
+            let from = b.structure.notation(M::info(self.base));
             let at = bif.at.clone();
             let kind = bif.kind;
             let structure = b.structure.clone();
             let names: Vec<String> = starts
                 .iter()
-                .map(|s| settle::structure_name::<M>(&s.structure))
+                .map(|s| settle::structure_name(M::info(self.base), &s.structure))
                 .collect();
             let to = if !names.is_empty() {
                 let mut names = names;
@@ -353,7 +353,7 @@ impl<'a, M: Model> Explorer<'a, M> {
                     from.clone()
                 } else {
                     let (past, found) = self.past(at.value, dir, &old);
-                    let name = settle::name::<M>(&found);
+                    let name = settle::name(M::info(self.base), &found);
                     self.found(past, &found);
                     name
                 }
@@ -372,7 +372,7 @@ impl<'a, M: Model> Explorer<'a, M> {
                 {
                     self.cuts.push(Cut {
                         value: at.value,
-                        structure: start.structure.notation(M::INFO),
+                        structure: start.structure.notation(M::info(self.base)),
                         n: periods,
                         max_period: self.opts.max_period.unwrap_or(periods),
                     });

@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::bifurcation::branch::{Branch, EndReason};
 use crate::bifurcation::ContinuationOptions;
 use crate::model::param::{ParamError, ParamSet};
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::amplitude::{self, Amplitude};
 use crate::orbit::attractor::{AttractorOptions, NoMotion, PermanentStick};
 use crate::orbit::motion::{Motion, OrbitError};
@@ -330,12 +330,13 @@ fn amplitude_of<M: Model>(
 }
 
 fn summary<M: Model>(m: &Motion, p: &M::Params) -> MotionSummary {
+    let info = M::info(p);
     let st = m
         .stability
         .unwrap_or_else(|| Stability::of(&nalgebra::Matrix2::zeros()));
     let amp = amplitude_of::<M>(p, &m.structure, &m.points);
     MotionSummary {
-        structure: m.structure.notation(M::INFO),
+        structure: m.structure.notation(info),
         n: m.structure.periods(),
         start_wt: m.points[0].phase.rem_euclid(TAU),
         start_x: m.points[0].x,
@@ -466,13 +467,14 @@ fn branch_samples<M: Model>(
 }
 
 fn branch_summary<M: Model>(
+    info: &ModelInfo,
     id: usize,
     b: &Branch,
     at: &impl Fn(f64) -> Option<M::Params>,
 ) -> BranchSummary {
     BranchSummary {
         id,
-        structure: b.structure.notation(M::INFO),
+        structure: b.structure.notation(info),
         n: b.structure.periods(),
         points: branch_samples::<M>(b, at),
         ends: b
@@ -486,7 +488,7 @@ fn branch_summary<M: Model>(
                 let boundary = match e.reason {
                     EndReason::Transition {
                         boundary: Some(k), ..
-                    } => Some(M::INFO.boundaries[k].label.to_string()),
+                    } => Some(info.boundaries[k].label.to_string()),
                     _ => None,
                 };
                 BranchEndSummary {
@@ -542,8 +544,8 @@ pub(crate) fn sweep_branches<M: Model>(
     count: usize,
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
-    <M::Params as ParamSet>::index_of(name)
-        .ok_or_else(|| ParamError::not_free(M::IDENTITY, name))?;
+    base.index_of(name)
+        .ok_or_else(|| ParamError::not_free(M::identity(&base), name))?;
     if count < 2 || !from.is_finite() || !to.is_finite() || from >= to {
         return Err(SweepError::Range(format!(
             "{name}={from}:{to}:{count}: need from < to and at least 2 points"
@@ -562,8 +564,9 @@ fn sweep_grid<M: Model>(
     values: Vec<f64>,
     opts: SweepOptions,
 ) -> Result<(Sweep, Vec<Branch>), SweepError> {
-    let index = <M::Params as ParamSet>::index_of(name)
-        .ok_or_else(|| ParamError::not_free(M::IDENTITY, name))?;
+    let index = base
+        .index_of(name)
+        .ok_or_else(|| ParamError::not_free(M::identity(&base), name))?;
     if opts.max_mappings == Some(0) {
         return Err(SweepError::Options(
             "the longest branch followed (--max-mappings, max_mappings) must have at least 1 mapping, not 0".into(),
@@ -618,7 +621,7 @@ fn sweep_grid<M: Model>(
         .branches
         .iter()
         .enumerate()
-        .map(|(id, b)| branch_summary::<M>(id, b, &at))
+        .map(|(id, b)| branch_summary::<M>(M::info(&base), id, b, &at))
         .collect();
     let mut bifurcations: Vec<BifurcationSummary> = explorer
         .bifurcations
@@ -631,7 +634,7 @@ fn sweep_grid<M: Model>(
             BifurcationSummary {
                 value: bif.at.value,
                 kind: bif.kind,
-                structure: b.structure.notation(M::INFO),
+                structure: b.structure.notation(M::info(&base)),
                 n: b.structure.periods(),
                 eigenvalue: bif.eigenvalue,
                 branch: l.branch,

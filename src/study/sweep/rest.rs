@@ -32,7 +32,8 @@ pub(super) fn regimes<M: Model>(
     opts: &SweepOptions,
     explorer: &mut Explorer<'_, M>,
 ) -> Vec<Vec<NoMotion>> {
-    let domains = M::INFO.domains.len();
+    let info = M::info(base);
+    let domains = info.domains.len();
     let at = |value: f64, j: usize| {
         with(base, index, value)
             .ok()
@@ -74,13 +75,13 @@ pub(super) fn regimes<M: Model>(
                 .map(|s| settle::from_rest(&s, opts));
             let to = found
                 .as_ref()
-                .map_or("invalid".to_string(), settle::name::<M>);
-            let dom = M::INFO.domains[j];
+                .map_or("invalid".to_string(), |f| settle::name(info, f));
+            let dom = info.domains[j];
             let boundary = [dom.upper, dom.lower]
                 .into_iter()
                 .flatten()
                 .next()
-                .map(|k| M::INFO.boundaries[k].label.to_string());
+                .map(|k| info.boundaries[k].label.to_string());
             explorer.transition(Transition {
                 value: lo,
                 from: "NM".into(),

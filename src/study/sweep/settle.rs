@@ -2,7 +2,7 @@
 //! simulation, from rest or from the state of a motion that just ended.
 
 use crate::dynamics::simulate::{SimOptions, Simulator};
-use crate::model::Model;
+use crate::model::{Model, ModelInfo};
 use crate::orbit::attractor::{self, Attractor};
 use crate::orbit::motion::{segment_at, Motion, OrbitError};
 use crate::orbit::structure::Structure;
@@ -12,9 +12,9 @@ use super::SweepOptions;
 /// The name a transition's `to` gives what the simulation found:
 /// `P_{...}` (with `^N` for N > 1 forcing periods), `NM`, `stick`,
 /// `autonomous`, `unsettled` or `invalid`.
-pub(super) fn name<M: Model>(found: &Result<Attractor, OrbitError>) -> String {
+pub(super) fn name(info: &ModelInfo, found: &Result<Attractor, OrbitError>) -> String {
     match found {
-        Ok(Attractor::Periodic(m)) => motion_name::<M>(m),
+        Ok(Attractor::Periodic(m)) => motion_name(info, m),
         Ok(Attractor::NoMotion(_)) => "NM".into(),
         Ok(Attractor::Stick(_)) => "stick".into(),
         Ok(Attractor::Autonomous(_)) => "autonomous".into(),
@@ -24,13 +24,13 @@ pub(super) fn name<M: Model>(found: &Result<Attractor, OrbitError>) -> String {
 }
 
 /// `P_{...}`, with `^N` for a motion of N > 1 forcing periods.
-pub(super) fn motion_name<M: Model>(m: &Motion) -> String {
-    structure_name::<M>(&m.structure)
+pub(super) fn motion_name(info: &ModelInfo, m: &Motion) -> String {
+    structure_name(info, &m.structure)
 }
 
 /// `P_{...}`, with `^N` for a structure of N > 1 forcing periods.
-pub(super) fn structure_name<M: Model>(s: &Structure) -> String {
-    s.label(M::INFO)
+pub(super) fn structure_name(info: &ModelInfo, s: &Structure) -> String {
+    s.label(info)
 }
 
 /// Simulate from rest.

@@ -50,7 +50,7 @@ impl<M: Model> Extended<M> {
             return 0;
         }
         let k = (own + m / 2) % m;
-        let info = M::INFO;
+        let info = self.eval.sim.info();
         let step = self.eval.steps[k];
         let next = self.eval.steps[(k + 1) % m];
         if info.mappings[step].kind == MappingKind::Stick
