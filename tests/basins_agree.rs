@@ -18,7 +18,7 @@ use stickslip::study::basins::{
 };
 use stickslip::study::map::{motion_label, GridAxis};
 use stickslip::study::search::same_motion;
-use stickslip::Model;
+use stickslip::{Model, ModelInfo};
 
 /// Forcing periods simulated at most, by both (`simulate`'s default).
 const PERIODS: u32 = 3000;
@@ -45,13 +45,18 @@ fn simulate<M: Model>(sim: &Simulator<M>, x0: f64, v0: f64) -> Result<Attractor,
 /// Whether the basin verdict `label` is the attractor `simulated`: the
 /// known motion of that label is the simulated motion itself (same
 /// switching points), or the label names the simulated attractor.
-fn agrees<M: Model>(known: &Known, label: &str, simulated: &Result<Attractor, String>) -> bool {
+fn agrees(
+    info: &ModelInfo,
+    known: &Known,
+    label: &str,
+    simulated: &Result<Attractor, String>,
+) -> bool {
     match simulated {
         Ok(Attractor::Periodic(m)) => match known.labels.iter().position(|l| l == label) {
             Some(i) => same_motion(&known.found[i], m, 1e-6),
-            None => label.starts_with(&attractor_label::<M>(&Attractor::Periodic(m.clone()))),
+            None => label.starts_with(&attractor_label(info, &Attractor::Periodic(m.clone()))),
         },
-        Ok(a) => label == attractor_label::<M>(a),
+        Ok(a) => label == attractor_label(info, a),
         Err(why) => label == why,
     }
 }
@@ -70,12 +75,14 @@ fn compare<M: Model>(p: M::Params, x: &str, v: &str) -> (usize, usize, Vec<Strin
         let basin = classify(&sim, &known, &header, i).attractor;
         let (x0, v0) = header.start(i);
         let simulated = simulate(&sim, x0, v0);
-        if agrees::<M>(&known, &basin, &simulated) {
+        if agrees(sim.info(), &known, &basin, &simulated) {
             agree += 1;
         } else {
             let named = simulated.map(|a| match a {
-                Attractor::Periodic(m) => format!("{} at {:?}", motion_label::<M>(&m), m.points[0]),
-                other => attractor_label::<M>(&other),
+                Attractor::Periodic(m) => {
+                    format!("{} at {:?}", motion_label(sim.info(), &m), m.points[0])
+                }
+                other => attractor_label(sim.info(), &other),
             });
             wrong.push(format!("({x0}, {v0}): basins {basin}, simulate {named:?}"));
         }
@@ -86,7 +93,7 @@ fn compare<M: Model>(p: M::Params, x: &str, v: &str) -> (usize, usize, Vec<Strin
     let n = header.grid_len();
     eprintln!(
         "{} {}, {} by {}: {agree} of {n} agree; attractors {labels:?}",
-        M::INFO.name,
+        sim.info().name,
         sim.oscillator().frequency,
         x.spec(),
         v.spec()
@@ -102,8 +109,8 @@ fn compare<M: Model>(p: M::Params, x: &str, v: &str) -> (usize, usize, Vec<Strin
 
 fn paper_at(w: f64) -> paper::Params {
     let mut p = paper::Params::default();
-    p.set(paper::Params::index_of("Q0").unwrap(), 70.0);
-    p.set(paper::Params::index_of("W").unwrap(), w);
+    p.set(p.index_of("Q0").unwrap(), 70.0);
+    p.set(p.index_of("W").unwrap(), w);
     p
 }
 
@@ -117,7 +124,7 @@ fn coulomb_at(w: f64) -> coulomb::Params {
         ("Q0", 1.5),
         ("W", w),
     ] {
-        p.set(coulomb::Params::index_of(name).unwrap(), value);
+        p.set(p.index_of(name).unwrap(), value);
     }
     p
 }

@@ -20,7 +20,7 @@ use stickslip::study::sweep::{sweep, Sweep, SweepOptions};
 /// (away from zero for positive `ulps`); zeros stay zero.
 fn nudged<P: ParamSet>(p: &P, ulps: i64) -> P {
     let mut q = *p;
-    for i in 0..P::NAMES.len() {
+    for i in 0..p.names().len() {
         let v = p.get(i);
         if v != 0.0 && v.is_finite() {
             let bits = v.to_bits() as i64 + ulps;
@@ -30,10 +30,10 @@ fn nudged<P: ParamSet>(p: &P, ulps: i64) -> P {
     q
 }
 
-fn set<P: ParamSet>(pairs: &[(&str, f64)]) -> P {
+fn set<P: ParamSet + Default>(pairs: &[(&str, f64)]) -> P {
     let mut p = P::default();
     for &(name, value) in pairs {
-        p.set(P::index_of(name).expect("a parameter"), value);
+        p.set(p.index_of(name).expect("a parameter"), value);
     }
     p
 }

@@ -68,7 +68,11 @@ fn the_spectrum_names_the_motion_a_simulation_settles_on() {
                 panic!("W = {w} from ({x}, {v}): {plain:?}");
             };
             let label = with_periods(structure, *n);
-            assert_eq!(label, motion_label::<Paper>(&m), "W = {w} from ({x}, {v})");
+            assert_eq!(
+                label,
+                motion_label(sim.info(), &m),
+                "W = {w} from ({x}, {v})"
+            );
             names.push(label);
         }
     }
