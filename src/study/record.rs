@@ -4,7 +4,7 @@
 //! atomically in canonical order at the end. The formats of the header and
 //! the records are the callers'; this module holds what the two share.
 
-use std::fs::{self, File};
+use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
@@ -62,6 +62,30 @@ pub(crate) fn write_atomic(
     f.sync_all().map_err(at(&tmp))?;
     drop(f);
     fs::rename(&tmp, out).map_err(at(out))
+}
+
+/// Reopen the record file `out` of a resumed run for appending, cut back to
+/// its `valid_len` bytes of complete lines (a line cut short by a kill is
+/// dropped before anything is appended after it).
+pub(crate) fn reopen(out: &Path, valid_len: u64) -> io::Result<File> {
+    OpenOptions::new()
+        .write(true)
+        .open(out)?
+        .set_len(valid_len)?;
+    OpenOptions::new().append(true).open(out)
+}
+
+/// A record file at `out` holding only `header`: a new file (`fresh`: never
+/// an existing one), or the file of a run killed before even its header
+/// was complete, started afresh.
+pub(crate) fn start(out: &Path, header: &str, fresh: bool) -> io::Result<File> {
+    let mut f = if fresh {
+        OpenOptions::new().append(true).create_new(true).open(out)?
+    } else {
+        File::create(out)?
+    };
+    f.write_all(header.as_bytes())?;
+    Ok(f)
 }
 
 #[cfg(test)]

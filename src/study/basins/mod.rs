@@ -42,7 +42,7 @@ mod file;
 pub mod sample;
 
 use std::collections::BTreeMap;
-use std::fs::{self, File, OpenOptions};
+use std::fs::{self, File};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -56,6 +56,7 @@ use crate::dynamics::simulate::{SimOptions, Simulator};
 use crate::model::Model;
 use crate::study::map::{AxisError, GridAxis};
 use crate::study::progress::Progress;
+use crate::study::record;
 
 pub use classify::{
     attractor_label, classify, discover, irregular, seed_indices, Known, CHAOTIC, QUASI_PERIODIC,
@@ -207,34 +208,11 @@ fn open_output(
                         }
                     }
                 }
-                let f = OpenOptions::new()
-                    .write(true)
-                    .open(out)
-                    .map_err(io_err(out))?;
-                f.set_len(previous.valid_len).map_err(io_err(out))?;
-                drop(f);
-                OpenOptions::new()
-                    .append(true)
-                    .open(out)
-                    .map_err(io_err(out))?
+                record::reopen(out, previous.valid_len).map_err(io_err(out))?
             }
-            None => {
-                let mut f = File::create(out).map_err(io_err(out))?;
-                f.write_all(header.to_lines().as_bytes())
-                    .map_err(io_err(out))?;
-                f
-            }
+            None => record::start(out, &header.to_lines(), false).map_err(io_err(out))?,
         },
-        None => {
-            let mut f = OpenOptions::new()
-                .append(true)
-                .create_new(true)
-                .open(out)
-                .map_err(io_err(out))?;
-            f.write_all(header.to_lines().as_bytes())
-                .map_err(io_err(out))?;
-            f
-        }
+        None => record::start(out, &header.to_lines(), true).map_err(io_err(out))?,
     };
     Ok(file)
 }

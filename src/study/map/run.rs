@@ -3,7 +3,7 @@
 //! run; [`merge`] joins shard files into the file one run would write.
 
 use std::collections::BTreeMap;
-use std::fs::{self, File, OpenOptions};
+use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -14,6 +14,7 @@ use rayon::prelude::*;
 
 use crate::model::Model;
 use crate::study::progress::Progress;
+use crate::study::record;
 
 use super::classify::classify_point;
 use super::continuation::classify_tile;
@@ -201,36 +202,12 @@ pub fn run_map_counting<M: Model>(
                 if !conflicts.is_empty() {
                     return Err(MapError::Conflict(conflicts));
                 }
-                let f = OpenOptions::new()
-                    .write(true)
-                    .open(out)
-                    .map_err(io_err(out))?;
-                // Drop a line cut short by a kill before appending after it.
-                f.set_len(previous.valid_len).map_err(io_err(out))?;
-                drop(f);
-                OpenOptions::new()
-                    .append(true)
-                    .open(out)
-                    .map_err(io_err(out))?
+                record::reopen(out, previous.valid_len).map_err(io_err(out))?
             }
-            None => {
-                // Killed before even the header was complete: start afresh.
-                let mut f = File::create(out).map_err(io_err(out))?;
-                f.write_all(header.to_lines().as_bytes())
-                    .map_err(io_err(out))?;
-                f
-            }
+            // Killed before even the header was complete: start afresh.
+            None => record::start(out, &header.to_lines(), false).map_err(io_err(out))?,
         },
-        None => {
-            let mut f = OpenOptions::new()
-                .append(true)
-                .create_new(true)
-                .open(out)
-                .map_err(io_err(out))?;
-            f.write_all(header.to_lines().as_bytes())
-                .map_err(io_err(out))?;
-            f
-        }
+        None => record::start(out, &header.to_lines(), true).map_err(io_err(out))?,
     };
     let already_done = done.len();
     let todo: Vec<usize> = (0..total)
