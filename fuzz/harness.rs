@@ -133,8 +133,11 @@ pub fn model_loaded(source: &str, r: &mut Bytes<'_>) {
                 loaded.render()
             ),
             (Ok(_), Ok(Compiled::Piecewise { instance, code, .. })) => {
-                let defaults: Vec<f64> =
-                    instance.free.iter().map(|&i| instance.params[i].default).collect();
+                let defaults: Vec<f64> = instance
+                    .free
+                    .iter()
+                    .map(|&i| instance.params[i].default)
+                    .collect();
                 let p: Vec<f64> = defaults.iter().map(|&d| r.f64(d)).collect();
                 let m = &code.machine;
                 for _ in 0..4 {
@@ -166,7 +169,12 @@ pub fn model_loaded(source: &str, r: &mut Bytes<'_>) {
                 m.call(code.oscillator, &p, &[], &mut out5);
                 m.call(code.conditions, &p, &[], &mut out3);
                 // Too few parameter values: NaN, nothing read.
-                m.call(code.oscillator, &p[..p.len().saturating_sub(1)], &[], &mut out5);
+                m.call(
+                    code.oscillator,
+                    &p[..p.len().saturating_sub(1)],
+                    &[],
+                    &mut out5,
+                );
                 assert!(p.is_empty() || out5.iter().all(|v| v.is_nan()));
             }
             (Ok(_), Ok(Compiled::Smooth { smooth, code })) => {
