@@ -6,20 +6,31 @@
 //! numbers up to the extremes, hostile identifiers), printed as text, then
 //! slightly mutated (a token dropped, duplicated, swapped or renamed) for
 //! near-well-formed inputs. The text goes through `check_source`, the entry
-//! point of `stickslip check`, `build.rs` and `model!(file = ...)`.
+//! point of `stickslip check`, `build.rs` and `model!(file = ...)`, or
+//! through the run-time back end (`model_jit`), which must accept exactly
+//! what `check_source` accepts.
 //!
 //! Sizes are bounded (at most 8 parameters, 4 lets, 5 boundaries, 6 scenes,
 //! expressions 5 deep, 4 mutations), so every input is checked in bounded
 //! time. Needs the `harness` module at the crate root (`Bytes`,
 //! `model_text`).
 
-use crate::harness::{model_text, Bytes};
+use crate::harness::{model_loaded, model_text, Bytes};
 
 /// Build a model from `data`, check it: no panic, a located report or code
 /// that parses as Rust (see `harness::model_text`).
 pub fn model_grammar(data: &[u8]) {
     let source = model_from_bytes(data);
     model_text(&source);
+}
+
+/// Build a model from `data` and load it through the run-time back end
+/// (see `harness::model_jit`); the bytes past the model's choose the points
+/// its compiled functions are called at.
+pub fn model_jit(data: &[u8]) {
+    let source = model_from_bytes(data);
+    let points = data.get(data.len() / 2..).unwrap_or_default();
+    model_loaded(&source, &mut Bytes::new(points));
 }
 
 /// The model text `data` chooses (also used to write seeds).

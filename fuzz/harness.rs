@@ -8,7 +8,9 @@
 //! a rejected model's report locates every error in `fuzz.ssm`;
 //! `Simulator::new` fails exactly when `ParamSet::check` does; `start` fails
 //! exactly on a non-finite state; simulated events come in order at finite
-//! phases; a Newton solution reported admissible has finite points.
+//! phases; a Newton solution reported admissible has finite points; the
+//! run-time back end accepts exactly what the checks accept, and its
+//! machine code returns at any point.
 
 #![allow(dead_code)]
 
@@ -90,6 +92,100 @@ pub fn model_text(source: &str) {
                     e.rendered
                 );
                 assert!(rendered.contains(&e.rendered));
+            }
+        }
+    }
+}
+
+/// A model file's text through the run-time back end, as `--model-file` and
+/// `Model.from_source` load it (`jit::compile_text`; compiled, called,
+/// freed, so that memory stays bounded over a long run). It must accept
+/// exactly what `check_source` accepts, fail with the same report where
+/// that rejects, and compile the model and each of its scenes to functions
+/// that return (whatever the numbers) when called at points from `r`, NaN
+/// and infinities included.
+pub fn model_loaded(source: &str, r: &mut Bytes<'_>) {
+    use stickslip::model::loaded::routines::ROUTINES;
+    use stickslip_codegen::jit::{compile_text, Compiled};
+    let checked = stickslip_codegen::check_source(source, "fuzz.ssm");
+    let mut scenes: Vec<Option<String>> = vec![None];
+    if let Ok(generated) = &checked {
+        scenes.extend(
+            generated
+                .instances
+                .iter()
+                .filter_map(|i| i.name.split_once("::").map(|(_, s)| Some(s.to_string()))),
+        );
+    }
+    for scene in scenes {
+        let compiled = compile_text(source, "fuzz.ssm", None, scene.as_deref(), &ROUTINES);
+        match (&checked, compiled) {
+            (Err(report), Err(loaded)) => assert_eq!(
+                report, &loaded,
+                "the run-time back end reports otherwise than check:\n{source}"
+            ),
+            (Err(report), Ok(_)) => panic!(
+                "the run-time back end compiled a model check rejects ({}):\n{source}",
+                report.render()
+            ),
+            (Ok(_), Err(loaded)) => panic!(
+                "the run-time back end rejects a model check accepts ({}):\n{source}",
+                loaded.render()
+            ),
+            (Ok(_), Ok(Compiled::Piecewise { instance, code, .. })) => {
+                let defaults: Vec<f64> = instance
+                    .free
+                    .iter()
+                    .map(|&i| instance.params[i].default)
+                    .collect();
+                let p: Vec<f64> = defaults.iter().map(|&d| r.f64(d)).collect();
+                let m = &code.machine;
+                for _ in 0..4 {
+                    let a: [f64; 8] = std::array::from_fn(|_| r.f64(1.0));
+                    let mut out2 = [0.0; 2];
+                    let mut out10 = [0.0; 10];
+                    for &f in &code.flows {
+                        m.call(f, &p, &[a[0], a[1], a[2], a[3]], &mut out2);
+                    }
+                    for &f in &code.fields {
+                        m.call(f, &p, &[a[0], a[1], a[2]], &mut out2);
+                    }
+                    for (&res, &map) in code.residuals.iter().zip(&code.mappings) {
+                        m.call(res, &p, &a, &mut out2);
+                        m.call(map, &p, &a, &mut out10);
+                    }
+                    if let Some(s) = code.stick {
+                        let mut out5 = [0.0; 5];
+                        m.call(s.forces, &p, &[a[0], a[1]], &mut out5);
+                    }
+                }
+                let (mut out1, mut out3, mut out5) = ([0.0; 1], [0.0; 3], [0.0; 5]);
+                for &f in &code.coefficients {
+                    m.call(f, &p, &[], &mut out3);
+                }
+                for &f in &code.velocities {
+                    m.call(f, &p, &[], &mut out1);
+                }
+                m.call(code.oscillator, &p, &[], &mut out5);
+                m.call(code.conditions, &p, &[], &mut out3);
+                // Too few parameter values: NaN, nothing read.
+                m.call(
+                    code.oscillator,
+                    &p[..p.len().saturating_sub(1)],
+                    &[],
+                    &mut out5,
+                );
+                assert!(p.is_empty() || out5.iter().all(|v| v.is_nan()));
+            }
+            (Ok(_), Ok(Compiled::Smooth { smooth, code })) => {
+                let p: Vec<f64> = smooth.params.iter().map(|d| r.f64(d.default)).collect();
+                let m = &code.machine;
+                let (mut out1, mut out2) = ([0.0; 1], [0.0; 2]);
+                for _ in 0..4 {
+                    m.call(code.kinetic, &p, &[r.f64(1.0)], &mut out2);
+                }
+                m.call(code.belt, &p, &[], &mut out1);
+                m.call(code.bound, &p, &[], &mut out1);
             }
         }
     }

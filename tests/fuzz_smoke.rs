@@ -95,6 +95,40 @@ fn model_grammar_builds_some_models_and_rejects_others() {
 }
 
 #[test]
+fn model_jit_seeds() {
+    let seeds = seeds("model_jit");
+    assert!(seeds.len() >= 4, "the seed corpus is missing");
+    for (name, bytes) in seeds {
+        eprintln!("{name}");
+        grammar::model_jit(&bytes);
+    }
+}
+
+/// The run-time back end on random grammar inputs: it compiles some (and
+/// calls their code) and rejects others, always as `check_source` does.
+#[test]
+fn model_jit_compiles_some_models_and_rejects_others() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand::rngs::StdRng::seed_from_u64(0x0046);
+    let (mut compiled, mut rejected) = (0, 0);
+    for _ in 0..40 {
+        let n = rng.gen_range(0..600);
+        let bytes: Vec<u8> = (0..n).map(|_| rng.gen()).collect();
+        let text = grammar::model_from_bytes(&bytes);
+        match stickslip_codegen::check_source(&text, "fuzz.ssm") {
+            Ok(_) => compiled += 1,
+            Err(_) => rejected += 1,
+        }
+        grammar::model_jit(&bytes);
+    }
+    eprintln!("compiled {compiled}, rejected {rejected}");
+    assert!(
+        compiled >= 10 && rejected >= 10,
+        "compiled {compiled}, rejected {rejected}"
+    );
+}
+
+#[test]
 fn runtime_params_seeds() {
     let seeds = seeds("runtime_params");
     assert!(!seeds.is_empty(), "the seed corpus is missing");

@@ -13,7 +13,7 @@ use stickslip::model::loaded::{
 };
 use stickslip::models::ModelRef;
 use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
-use stickslip::{FrictionOscillator, Model, ModelVisitor, ParamSet};
+use stickslip::{Model, ModelVisitor, ParamSet};
 
 fn models_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("models")

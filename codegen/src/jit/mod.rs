@@ -350,7 +350,7 @@ impl<'a> Build<'a> {
                 .count()
         };
         let mut order: Vec<(usize, usize)> = self.specs.iter().map(size).enumerate().collect();
-        order.sort_by(|a, b| b.1.cmp(&a.1));
+        order.sort_by_key(|&(_, weight)| std::cmp::Reverse(weight));
         let mut shares: Vec<(usize, Vec<usize>)> = vec![(0, Vec::new()); threads];
         for (index, weight) in order {
             if let Some(share) = shares.iter_mut().min_by_key(|s| s.0) {
@@ -386,7 +386,7 @@ fn compile_share(
     routines: &Routines,
 ) -> Result<memory::Part, String> {
     let mut module = new_module(routines)?;
-    let imports = Imports::declare(&mut module).map_err(|e| e.to_string())?;
+    let imports = Imports::declare(&mut module)?;
     let mut compiler = Compiler {
         ctx: module.make_context(),
         module: &mut module,
@@ -397,13 +397,11 @@ fn compile_share(
     let mut ids = Vec::with_capacity(share.len());
     for &i in share {
         let spec = &specs[i];
-        let id = compiler
-            .define(&Function {
-                graph,
-                vars: spec.vars,
-                outputs: &spec.outputs,
-            })
-            .map_err(|e| e.to_string())?;
+        let id = compiler.define(&Function {
+            graph,
+            vars: spec.vars,
+            outputs: &spec.outputs,
+        })?;
         ids.push((i, id, spec.args, spec.outputs.len()));
     }
     module.finalize_definitions().map_err(|e| e.to_string())?;

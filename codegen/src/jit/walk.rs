@@ -19,7 +19,7 @@ use cranelift_codegen::ir::{types, AbiParam, FuncRef, InstBuilder, MemFlags, Sig
 use cranelift_codegen::Context;
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
-use cranelift_module::{FuncId, Linkage, Module, ModuleError};
+use cranelift_module::{FuncId, Linkage, Module};
 
 use crate::expr::{Graph, Hom, Id, Node, Schedule};
 
@@ -75,14 +75,17 @@ pub(super) fn signature(module: &JITModule) -> Signature {
 }
 
 impl Imports {
-    pub(super) fn declare(module: &mut JITModule) -> Result<Self, ModuleError> {
+    pub(super) fn declare(module: &mut JITModule) -> Result<Self, String> {
         let unary = float_signature(module, 1, 1);
         // `(Ec, Es)` comes back as a `#[repr(C)]` pair of `f64`, which the
         // C calling convention returns in two float registers: two results.
         let three = float_signature(module, 3, 2);
         let two = float_signature(module, 2, 2);
-        let mut import =
-            |name: &str, sig: &Signature| module.declare_function(name, Linkage::Import, sig);
+        let mut import = |name: &str, sig: &Signature| {
+            module
+                .declare_function(name, Linkage::Import, sig)
+                .map_err(|e| e.to_string())
+        };
         Ok(Self {
             sin: import(symbol::SIN, &unary)?,
             cos: import(symbol::COS, &unary)?,
@@ -117,11 +120,14 @@ pub(super) struct Compiler<'m> {
 
 impl Compiler<'_> {
     /// Define `f` in the module; its id.
-    pub(super) fn define(&mut self, f: &Function<'_>) -> Result<FuncId, ModuleError> {
+    pub(super) fn define(&mut self, f: &Function<'_>) -> Result<FuncId, String> {
         let name = format!("f{}", self.count);
         self.count += 1;
         let sig = signature(self.module);
-        let id = self.module.declare_function(&name, Linkage::Local, &sig)?;
+        let id = self
+            .module
+            .declare_function(&name, Linkage::Local, &sig)
+            .map_err(|e| e.to_string())?;
         self.ctx.func.signature = sig;
         {
             let mut b = FunctionBuilder::new(&mut self.ctx.func, &mut self.fctx);
@@ -146,11 +152,16 @@ impl Compiler<'_> {
             walk.b.ins().return_(&[]);
             walk.b.finalize();
         }
-        self.module.define_function(id, &mut self.ctx)?;
+        self.module
+            .define_function(id, &mut self.ctx)
+            .map_err(|e| e.to_string())?;
         self.module.clear_context(&mut self.ctx);
         Ok(id)
     }
 }
+
+/// `(d, c, tau)` and the `(Ec, Es)` one call computed for them.
+type HomCall = ((Id, Id, Id), (Value, Value));
 
 struct Walk<'a, 'b> {
     b: FunctionBuilder<'b>,
@@ -163,7 +174,7 @@ struct Walk<'a, 'b> {
     /// Each computed node's value, by node index.
     values: Vec<Option<Value>>,
     /// `(Ec, Es)` of each `(d, c, tau)` called for.
-    homs: Vec<((Id, Id, Id), (Value, Value))>,
+    homs: Vec<HomCall>,
     /// The routines declared in this function.
     refs: Vec<(FuncId, FuncRef)>,
 }
