@@ -13,7 +13,6 @@ use stickslip::orbit::motion::solve;
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions, TransitionKind, MAX_PERIOD};
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 

@@ -43,7 +43,6 @@ use stickslip::orbit::motion::{solve, Motion};
 use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use stickslip::orbit::structure::Structure;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::Model;
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 const PI: f64 = std::f64::consts::PI;

@@ -18,7 +18,6 @@ use stickslip::output::figure::{register, Figure};
 use stickslip::output::history::History;
 use stickslip::output::sweep_table;
 use stickslip::study::sweep::{sweep, SweepOptions};
-use stickslip::Model;
 
 const BIN: &str = env!("CARGO_BIN_EXE_stickslip");
 
