@@ -1,5 +1,5 @@
 //! Lyapunov exponents: 10^5 forcing periods of the exact tangent map with
-//! QR re-orthonormalisation (issue 13, target under a second).
+//! QR re-orthonormalisation (target under a second).
 //!
 //! `cargo bench --bench lyapunov`; results in benches/README.md.
 

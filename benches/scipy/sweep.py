@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The SciPy baseline of stickslip's main job (issue 11, item 6).
+"""The SciPy baseline of stickslip's main job.
 
 What a careful user writes today to get the steady motions of the paper model
 (`models/paper.ssm`, SPEC §1-§3) along the forcing frequency: for each of the

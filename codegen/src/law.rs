@@ -1,4 +1,4 @@
-//! Smooth friction laws (issue 5, SPEC §12): the law's quantities as graph
+//! Smooth friction laws (SPEC §12): the law's quantities as graph
 //! nodes, and the checks of a smooth model at its defaults. The
 //! piecewise-linear models built from a law are [`crate::expand::pieces`].
 

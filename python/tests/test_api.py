@@ -1,4 +1,4 @@
-"""The package's shape, as issue 14 asks it: numpy arrays where a notebook
+"""The package's shape, as a notebook user expects it: numpy arrays where a notebook
 plots, ``to_dict()`` on every result and ``to_pandas()`` on the tabular ones,
 type stubs that match the extension, long calls that release the GIL."""
 

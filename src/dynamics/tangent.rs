@@ -1,5 +1,5 @@
 //! The exact tangent map of the stroboscopic (Poincaré) map along the
-//! event-driven simulation (issue 13).
+//! event-driven simulation.
 //!
 //! The stroboscopic map `P` takes `(x, v)` at `W t = φ0 + 2πk` to `(x, v)` at
 //! `φ0 + 2π(k+1)`. Its derivative is the product, in time order, of

@@ -1,4 +1,4 @@
-//! Models with a smooth (nonlinear) kinetic friction law (issue 5): the law
+//! Models with a smooth (nonlinear) kinetic friction law: the law
 //! itself, integrated numerically, and the piecewise-linear models built from
 //! it at build time.
 //!

@@ -1,5 +1,5 @@
 //! Lyapunov exponents of the stroboscopic (Poincaré) map along a simulated
-//! trajectory, from the exact tangent map (issue 13).
+//! trajectory, from the exact tangent map.
 //!
 //! The exponents are those of the stroboscopic map `P` (one forcing period),
 //! from the exact tangent map of [`crate::dynamics::tangent`]: after a

@@ -1,4 +1,4 @@
-//! The speed/accuracy trade, measured (issue 5): the periodic motion of a
+//! The speed/accuracy trade, measured: the periodic motion of a
 //! smooth-law model predicted analytically by its N-piece models and
 //! computed by numerical integration at several tolerances, each compared
 //! with the law integrated at a tight tolerance (switching points at the belt

@@ -1,5 +1,5 @@
 //! The piecewise-linear models of a smooth friction law, built at build
-//! time for its `pieces: N` scenes (issue 5, SPEC §12).
+//! time for its `pieces: N` scenes (SPEC §12).
 //!
 //! **Breakpoint rule.** On each side of the belt speed the law is
 //! interpolated linearly between breakpoints `|v − V| = 0 < u_1 < … < u_{k−1} < R`

@@ -1,4 +1,4 @@
-//! Basins of attraction (issue 13): which attractor each initial state
+//! Basins of attraction: which attractor each initial state
 //! `(x, v)` at the stroboscopic phase `W t = φ0` reaches, over a grid, and
 //! basin stability by random sampling (Menck et al. 2013).
 //!

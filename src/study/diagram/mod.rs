@@ -1,4 +1,4 @@
-//! The brute-force orbit diagram (issue 13): at each value of one
+//! The brute-force orbit diagram: at each value of one
 //! parameter, after a transient, `K` stroboscopic samples `(x, v)` at
 //! `W t ≡ 0 (mod 2π)` of the simulated motion; swept up and down, each
 //! value starting from the previous value's final state, so that

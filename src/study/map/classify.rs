@@ -63,7 +63,7 @@ pub(super) fn failure(info: &ModelInfo, e: &OrbitError) -> String {
     }
 }
 
-/// What a start that did not settle does instead (issue 13), from the
+/// What a start that did not settle does instead, from the
 /// Lyapunov spectrum after the search's periods: `chaotic (lambda1 = …)`,
 /// `quasi_periodic (…)`, `cycle longer than 32 periods (…)`, or, where the
 /// spectrum finds a repeat after all, the motion it settles on later.
