@@ -202,7 +202,7 @@ fn a_reduced_motion_no_line_finds_is_traced_from_the_carried_start() {
     let kinds: Vec<(TransitionKind, Option<(String, u32)>)> =
         curves.iter().map(|c| (c.kind, name(c))).collect();
     let inner = &T[3..T.len() - 1];
-    let tt = format!("P_{{{inner} {inner}}}");
+    let tt = format!("(P_{{{inner}}})^{{×2}}");
     for (kind, structure, periods) in [
         (TransitionKind::StickVanishing, T, 1),
         (TransitionKind::Grazing, T, 1),

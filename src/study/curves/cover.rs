@@ -22,6 +22,8 @@
 //! branch switching: from every codimension-two point of a traced curve,
 //! the second condition's curve of the same motion ([`Cover::partners`]).
 
+use stickslip_codegen::structure as grammar;
+
 use crate::bifurcation::curve::{
     codim2_places, codim2_residual, crossings, inadmissible_point, partner_start, reduced_start,
     trace_watching, Condition, Curve, CurveEnd, CurveEndReason, Line, Plane, PARTNER_STEP,
@@ -576,8 +578,8 @@ impl<'a, M: Model> Cover<'a, M> {
         None
     }
 
-    /// Whether a curve of motion `name` has a point strictly between the
-    /// lines `a < b` (horizontal lines: in `y`).
+    /// Whether a curve of motion `name` (its notation, without `^N`) has a
+    /// point strictly between the lines `a < b` (horizontal lines: in `y`).
     fn runs_between(&self, name: &str, horizontal: bool, a: f64, b: f64) -> bool {
         self.curves.iter().any(|c| {
             let own = match &c.structure {
@@ -737,15 +739,16 @@ fn probe_places(plane: &Plane, curve: &Curve, n: usize) -> Vec<(Line, [f64; 2])>
         .collect()
 }
 
-/// The motions seen anywhere along a line (by name, without `^N`), of at
-/// most `max_mappings` mappings.
+/// The motions seen anywhere along a line (by notation, without `^N`), of
+/// at most `max_mappings` mappings (a compact `(P_{…})^{×k}` counts its
+/// block `k` times).
 fn motions(s: &LineSweep, max_mappings: usize) -> Vec<&str> {
     let mut out: Vec<&str> = s
         .labels
         .iter()
         .flat_map(|l| l.split(';'))
         .filter(|m| !m.is_empty() && *m != "stick")
-        .filter(|m| m.split_whitespace().count() <= max_mappings)
+        .filter(|m| m.split_whitespace().count() * grammar::repeats(m) <= max_mappings)
         .collect();
     out.sort_unstable();
     out.dedup();
