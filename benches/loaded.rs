@@ -2,7 +2,8 @@
 //! check, expand, equations, Cranelift), and the hot paths with the loaded
 //! model against the same model compiled in, in one run.
 //!
-//! `cargo bench --bench loaded`; results and ratios in benches/README.md.
+//! `cargo bench --bench loaded`; the numbers are in the guide's chapter
+//! "Models without a Rust build".
 
 use std::hint::black_box;
 use std::path::Path;
