@@ -37,8 +37,17 @@ fn eigenvalue_curves_of_long_stick_motions_hold_to_their_rounding_floor_and_reac
     let base = pl4::Params::default();
     let (wr, qr) = ([0.92, 0.96], [4.8, 5.0]);
     let (curves, plane) = traced_wq::<Pl4>(&base, wr, qr);
+    // One curve, the period doubling of the period-3 motion of 16 mappings
+    // that the global search finds on a line since it no longer assigns
+    // starts by distance, ends where it crawls into a grazing: a
+    // codimension-two point it reports ahead and does not locate. Every
+    // other end is on the box's edge or at a codimension-two point.
     let other = other_ends(Pl4::INFO, &curves);
+    let (ahead, other): (Vec<_>, Vec<_>) = other
+        .into_iter()
+        .partition(|e| e.contains("a codimension-two point lies ahead, not located"));
     assert!(other.is_empty(), "{other:#?}");
+    assert!(ahead.len() <= 1, "{ahead:#?}");
     // Every codimension-two end with a second condition holds it: the fold
     // and period-doubling ends where a stick vanishes held it to 1.8e-5 to
     // 4.1e-4 until stop 37, when `DP` still carried the pole of the
