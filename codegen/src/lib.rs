@@ -103,8 +103,8 @@ pub(crate) fn pipeline<B: Backend>(
     backend.emit(&model, generation)
 }
 
-/// The last pass of [`pipeline`]: what is made of a checked model's
-/// equations. A back end never sees a model a check rejected.
+/// The last pass of the generator's one pipeline: what is made of a
+/// checked model's equations. A back end never sees a model a check rejected.
 #[cfg(feature = "generator")]
 pub trait Backend {
     /// What it makes.

@@ -327,14 +327,14 @@ def test_the_readme_example_runs(tmp_path):
     import matplotlib
 
     matplotlib.use("Agg")
-    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "guide" / "src" / "figures").mkdir(parents=True)
     cwd = pathlib.Path.cwd()
     os.chdir(tmp_path)
     try:
         runpy.run_path(str(REPO / "examples" / "readme.py"))
     finally:
         os.chdir(cwd)
-    assert (tmp_path / "docs" / "python_example.png").stat().st_size > 10_000
+    assert (tmp_path / "docs" / "guide" / "src" / "figures" / "python_example.png").stat().st_size > 10_000
 
 
 def test_orbit_diagram_is_the_clis(cli):

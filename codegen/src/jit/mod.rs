@@ -1,8 +1,8 @@
 //! The run-time back end: a model file's equations compiled to machine code
 //! by Cranelift, for a model loaded while the program runs (no Rust build).
 //!
-//! It is the last pass of the same [`pipeline`](crate::pipeline) the
-//! build-time route runs: `parse → check → expand → equations` are shared,
+//! It is the last pass of the same pipeline the build-time route runs:
+//! `parse → check → expand → equations` are shared,
 //! so a file gets the same report from `stickslip check`, the build and a
 //! load, and only a model every check has passed reaches this pass. It
 //! compiles one instance (the model, or the scene asked for), one function

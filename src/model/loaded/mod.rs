@@ -14,8 +14,8 @@
 //!
 //! * [`routines`] — the `sin`, `cos`, `exp`, `ln` and `Ec`/`Es` the machine
 //!   code calls: the compiled-in models' own, behind `extern "C"`;
-//! * [`describe`] — the leaked [`ModelInfo`] / [`SmoothInfo`];
-//! * [`intern`] — loading, once per distinct text.
+//! * `describe` — the leaked [`ModelInfo`] / [`SmoothInfo`];
+//! * `intern` — loading, once per distinct text.
 
 mod describe;
 mod intern;

@@ -76,7 +76,7 @@ const SAME_MOTION: f64 = 1e-6;
 /// (searched in parallel, kept in seed order, each distinct motion once).
 /// Distinct motions of one structure, such as a mirror-image pair of a
 /// symmetric oscillator, are told apart in their labels by their first
-/// switching point ([`distinct_label`]).
+/// switching point (`distinct_label`).
 pub fn discover<M: Model>(sim: &Simulator<M>, header: &BasinHeader) -> Known {
     let opts = attractor_options(header.periods);
     let found: Vec<Option<attractor::Attractor>> = seed_indices(header)
