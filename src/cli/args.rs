@@ -101,7 +101,10 @@ impl Assignments {
     }
 
     /// Model `M`'s parameters: its defaults `base` with these applied, checked.
-    pub fn params<M: Model>(&self, base: M::Params) -> Result<M::Params, CliError> {
+    pub fn params<M: stickslip::FrictionOscillator>(
+        &self,
+        base: M::Params,
+    ) -> Result<M::Params, CliError> {
         let pairs: Vec<(&str, f64)> = self.0.iter().map(|(n, v)| (n.as_str(), *v)).collect();
         Ok(base.with_pairs(M::identity(&base), &pairs)?)
     }

@@ -7,6 +7,7 @@ mod check;
 mod curves;
 mod describe;
 mod diagram;
+mod equilibria;
 mod error;
 mod lyapunov;
 mod map;
@@ -57,6 +58,11 @@ enum Command {
     /// predictions and the integrator at several tolerances against the law
     /// integrated tightly (switching points, amplitude, time).
     Trade(trade::TradeArgs),
+    /// Steady sliding of an unforced model (Q0 = 0): the rest position, its
+    /// exact eigenvalues and stability, along a parameter with every change
+    /// of stability located (a smooth law's Hopf point, the point where a
+    /// piecewise law's equilibrium crosses a boundary).
+    Equilibria(equilibria::EquilibriaArgs),
     /// Which motions exist at each point of a grid over two parameters (the
     /// paper's Fig. 11); all cores, resumable, shardable for a cluster.
     Map(map::MapArgs),
@@ -98,6 +104,7 @@ impl Cli {
             Command::Simulate(args) => simulate::run(args)?,
             Command::Sweep(args) => sweep::run(args)?,
             Command::Trade(args) => trade::run(args)?,
+            Command::Equilibria(args) => equilibria::run(args)?,
             Command::Map(args) => map::run(args)?,
             Command::Curves(args) => curves::run(args)?,
             Command::Merge(args) => merge::run(args)?,

@@ -18,7 +18,7 @@ use crate::orbit::structure::Structure;
 use crate::MappingKind;
 
 /// The largest `|x|` and `|v|` over a motion's cycle.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Amplitude {
     /// `max |x|`.
     pub x: f64,
@@ -51,11 +51,23 @@ pub fn of_motion<M: Model>(
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Option<Amplitude> {
+    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    of_cycle::<M>(p, structure.steps(), shift, points)
+}
+
+/// [`of_motion`] of the cycle of mappings `steps` through `points`, the last
+/// mapping arriving at the first point `shift` later in phase (an
+/// autonomous cycle's phase length is its period times `W`).
+pub fn of_cycle<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> Option<Amplitude> {
     let info = M::info(p);
     let osc = M::oscillator(p);
-    let shift = std::f64::consts::TAU * structure.periods() as f64;
     let mut amp = Amplitude { x: 0.0, v: 0.0 };
-    for (k, &step) in structure.steps().iter().enumerate() {
+    for (k, &step) in steps.iter().enumerate() {
         let mi = info.mappings[step];
         let (a, b) = (points[k], arrival(points, k, shift));
         let va = M::boundary_velocity(p, mi.from);

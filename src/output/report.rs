@@ -15,6 +15,7 @@ use crate::model::param::ParamSet;
 use crate::model::{Model, ModelInfo};
 use crate::orbit::admissible::Violation;
 use crate::orbit::attractor::{AutonomousCycle, NoMotion, PermanentStick};
+use crate::orbit::equilibrium::{steady_sliding, Equilibrium, Seat};
 use crate::orbit::motion::Motion;
 use crate::orbit::periodic::{PeriodicSolver, Termination};
 use crate::orbit::stability::Stability;
@@ -178,6 +179,13 @@ pub struct NoMotionReport {
     /// Phase of the certificate (text output only).
     #[serde(skip)]
     pub certified_at: f64,
+    /// With no forcing, the motion at rest: steady sliding, its
+    /// eigenvalues and stability.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady_sliding: Option<Equilibrium>,
+    /// Where it rests (`domain 15`; text output only).
+    #[serde(skip)]
+    pub seat: String,
 }
 
 /// A permanent stick.
@@ -216,6 +224,13 @@ pub struct AutonomousReport {
     pub stick: f64,
     /// Time slipping per cycle.
     pub slip: f64,
+    /// The nontrivial Floquet multiplier (the trivial `1` removed; `0` for
+    /// a cycle with a stick); `null` at a grazing.
+    pub multiplier: Option<f64>,
+    /// The largest `|x|` over the cycle, from the closed forms.
+    pub max_abs_x: Option<f64>,
+    /// The largest `|v|` over the cycle.
+    pub max_abs_v: Option<f64>,
     /// The model's parameters.
     pub params: ParamValues,
     /// The model's name (text output only).
@@ -347,14 +362,24 @@ impl Report {
         }
     }
 
-    /// The report of a certified NM.
-    pub fn of_no_motion(info: &ModelInfo, nm: &NoMotion) -> Self {
+    /// The report of a certified NM; with no forcing, it names the
+    /// equilibrium the motion rests at (steady sliding).
+    pub fn of_no_motion<M: Model>(p: &M::Params, nm: &NoMotion) -> Self {
+        let info = M::info(p);
+        let steady = steady_sliding::<M>(p).ok();
+        let seat = match steady.map(|e| e.seat) {
+            Some(Seat::Domain(j)) => format!("domain {}", info.domains[j].label),
+            Some(Seat::Boundary { boundary, .. }) => info.boundaries[boundary].label.to_string(),
+            _ => String::new(),
+        };
         Report::NoMotion(NoMotionReport {
             max_v: nm.max_v,
             model: info.name,
             min_v: nm.min_v,
             domain: info.domains[nm.domain].label,
             certified_at: nm.certified_at,
+            steady_sliding: steady,
+            seat,
         })
     }
 
@@ -387,6 +412,9 @@ impl Report {
             period: a.period,
             stick: a.stick,
             slip: a.slip,
+            multiplier: a.multiplier,
+            max_abs_x: a.amplitude.map(|a| a.x),
+            max_abs_v: a.amplitude.map(|a| a.v),
             params: ParamValues::of(sim.params()),
             model: info.name,
         })

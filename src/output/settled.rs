@@ -58,7 +58,7 @@ pub fn settle<M: Model>(
         Ok(Attractor::Periodic(motion)) => motion_parts(sim, motion),
         Err(OrbitError::Inadmissible(motion)) => motion_parts(sim, *motion),
         Ok(Attractor::NoMotion(nm)) => (
-            Report::of_no_motion(sim.info(), &nm),
+            Report::of_no_motion::<M>(sim.params(), &nm),
             "NM, no boundary contact".to_string(),
             Some("last simulated forcing period"),
             Window::Simulated {

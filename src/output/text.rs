@@ -3,8 +3,10 @@
 
 use std::fmt;
 
+use crate::orbit::equilibrium::{Equilibrium, Verdict};
 use crate::orbit::stability::{Classification, Stability};
 use crate::output::report::{MotionReport, ParamValues, Report};
+use crate::study::equilibria::Scan;
 use crate::study::trade::Trade;
 
 impl fmt::Display for ParamValues {
@@ -145,6 +147,13 @@ impl fmt::Display for Report {
                      at W = sqrt(c) / (2 n))"
                 )
             }
+            Report::NoMotion(r) if r.steady_sliding.is_some() => writeln!(
+                f,
+                "{} (model {}; no motion touches a boundary, certified at W t = {:.6})",
+                steady_sliding_line(r.steady_sliding.as_ref().expect("checked"), &r.seat),
+                r.model,
+                r.certified_at
+            ),
             Report::NoMotion(r) => writeln!(
                 f,
                 "NM (no motion touches a boundary; model {}): the steady motion stays in domain {} \
@@ -161,8 +170,22 @@ impl fmt::Display for Report {
                 f,
                 "autonomous stick-slip cycle (no forcing; model {}): {}, period T = {:.12} \
                  (stick {:.12}, slip {:.12}); the stick begins at x = {:.12}, v = {} \
-                 (W t = {:.6}; W only sets the phase unit)",
-                r.model, r.structure, r.period, r.stick, r.slip, r.x, r.v, r.onset
+                 (W t = {:.6}; W only sets the phase unit); {}",
+                r.model,
+                r.structure,
+                r.period,
+                r.stick,
+                r.slip,
+                r.x,
+                r.v,
+                r.onset,
+                match r.multiplier {
+                    Some(m) if m.abs() < 1.0 =>
+                        format!("stable, Floquet multiplier {m:.6e} (the trivial 1 removed)"),
+                    Some(m) =>
+                        format!("unstable, Floquet multiplier {m:.6e} (the trivial 1 removed)"),
+                    None => "stability unknown: an arrival grazes its boundary".to_string(),
+                }
             ),
             Report::NotConverged(r) => {
                 writeln!(f, "{}", r.headline())?;
@@ -222,6 +245,101 @@ pub fn trade_table(t: &Trade) -> String {
         None => {
             out.push_str("\nobserved convergence order in N: not enough comparable piece counts\n")
         }
+    }
+    out
+}
+
+/// A pair of eigenvalues `[re, im]`: `-0.03 ± 0.99i`, or `-0.5, -2`.
+pub fn eigenvalue_pair(e: &[[f64; 2]; 2]) -> String {
+    if e[0][1] != 0.0 {
+        format!("{:.9} ± {:.9}i", e[0][0], e[0][1].abs())
+    } else {
+        format!("{:.9}, {:.9}", e[0][0], e[1][0])
+    }
+}
+
+/// One sentence on steady sliding: where, how stable, the eigenvalues.
+pub fn steady_sliding_line(e: &Equilibrium, seat: &str) -> String {
+    let verdict = match e.verdict {
+        Verdict::Stable => "stable",
+        Verdict::Unstable => "unstable",
+        Verdict::Neutral => "neutral (at a change of stability)",
+    };
+    let mut line = format!(
+        "steady sliding at x = {:.12}, v = 0 ({seat}): {verdict}, eigenvalues {}",
+        e.x,
+        eigenvalue_pair(&e.eigenvalues)
+    );
+    if let Some(above) = &e.above {
+        line.push_str(&format!(
+            " below the kink, {} above",
+            eigenvalue_pair(above)
+        ));
+    }
+    line.push_str(&format!(", margin {:.6e}", e.margin));
+    line
+}
+
+/// A text table of steady sliding along a parameter, then its changes of
+/// stability.
+pub fn equilibria_table(s: &Scan) -> String {
+    let mut out = String::new();
+    if s.param.is_empty() {
+        let point = &s.points[0];
+        return match (&point.equilibrium, &point.seat) {
+            (Some(e), Some(seat)) => {
+                format!("model {}\n{}\n", s.model, steady_sliding_line(e, seat))
+            }
+            _ => format!(
+                "model {}\nno steady sliding: {}\n",
+                s.model,
+                point.none.as_deref().unwrap_or("")
+            ),
+        };
+    }
+    out.push_str(&format!(
+        "steady sliding of {} along {}\n",
+        s.model, s.param
+    ));
+    out.push_str(&format!(
+        "{:>14}  {:>16}  {:<12}  {:<10}  {:>13}  eigenvalues\n",
+        s.param, "x*", "at", "stability", "margin"
+    ));
+    for p in &s.points {
+        match (&p.equilibrium, &p.seat) {
+            (Some(e), Some(seat)) => out.push_str(&format!(
+                "{:>14.9}  {:>16.12}  {:<12}  {:<10}  {:>13.6e}  {}\n",
+                p.value,
+                e.x,
+                seat,
+                format!("{:?}", e.verdict).to_lowercase(),
+                e.margin,
+                eigenvalue_pair(&e.eigenvalues)
+            )),
+            _ => out.push_str(&format!(
+                "{:>14.9}  none: {}\n",
+                p.value,
+                p.none.as_deref().unwrap_or("")
+            )),
+        }
+    }
+    if s.changes.is_empty() {
+        out.push_str("no change of stability on this grid\n");
+    }
+    for c in &s.changes {
+        let side = |v: Option<Verdict>| match v {
+            Some(Verdict::Stable) | Some(Verdict::Neutral) => "stable",
+            Some(Verdict::Unstable) => "unstable",
+            None => "none",
+        };
+        out.push_str(&format!(
+            "change of stability at {} = {:.15}: {} below, {} above; {}\n",
+            s.param,
+            c.change.at,
+            side(c.change.before),
+            side(c.change.after),
+            c.what
+        ));
     }
     out
 }

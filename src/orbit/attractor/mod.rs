@@ -5,6 +5,7 @@ use serde::Serialize;
 
 use crate::dynamics::simulate::{Event, EventKind, Location, Segment, Simulator};
 use crate::model::{MappingKind, Model, ModelInfo, Side};
+use crate::orbit::amplitude::Amplitude;
 use crate::orbit::motion::{solve, Motion, OrbitError};
 use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
 use crate::orbit::steady::{steady_response, SteadyResponse};
@@ -111,6 +112,38 @@ pub struct AutonomousCycle {
     pub stick: f64,
     /// Time slipping per cycle.
     pub slip: f64,
+    /// The nontrivial Floquet multiplier: of the monodromy's two
+    /// eigenvalues, the one that is not the trivial `1` along the flow
+    /// (SPEC §14). A cycle with a stick has `0`: the release point is fixed
+    /// by the static bound, so the stick forgets every perturbation. `None`
+    /// where an arrival is tangent to its boundary (a grazing cycle).
+    pub multiplier: Option<f64>,
+    /// The largest `|x|` and `|v|` over the cycle, from the closed forms
+    /// (`None` where a closed form does not exist).
+    pub amplitude: Option<Amplitude>,
+}
+
+impl AutonomousCycle {
+    /// Stable: the nontrivial multiplier inside the unit circle.
+    pub fn is_stable(&self) -> Option<bool> {
+        self.multiplier.map(|m| m.abs() < 1.0)
+    }
+}
+
+/// The nontrivial Floquet multiplier of the autonomous cycle `steps` through
+/// `points` (phase and `x` of every switching point, the last mapping
+/// returning to the first point `shift` later in phase): the eigenvalue of
+/// the exact monodromy that is not the trivial `1`. Its eigenvalues sum to
+/// its trace, so the other is `tr DP − 1`.
+pub fn autonomous_multiplier<M: Model>(
+    p: &M::Params,
+    steps: &[usize],
+    shift: f64,
+    points: &[SwitchingPoint],
+) -> Option<f64> {
+    let dp = crate::orbit::periodic::monodromy::<M>(p, steps, shift, points).ok()?;
+    let mu = dp.trace() - 1.0;
+    mu.is_finite().then_some(mu)
 }
 
 /// The latest cycle between two stick onsets at the same state, if the
@@ -142,7 +175,19 @@ pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Optio
             slip += dt;
         }
     }
+    let points: Vec<SwitchingPoint> = window[..window.len() - 1]
+        .iter()
+        .map(|e| SwitchingPoint {
+            phase: e.phase,
+            x: e.x,
+        })
+        .collect();
+    let shift = b.phase - window[0].phase;
+    let multiplier = autonomous_multiplier::<M>(sim.params(), &steps, shift, &points);
+    let amplitude = crate::orbit::amplitude::of_cycle::<M>(sim.params(), &steps, shift, &points);
     Some(AutonomousCycle {
+        multiplier,
+        amplitude,
         steps,
         x: b.x,
         v: sim.velocity(b.boundary),

@@ -1,0 +1,84 @@
+//! `stickslip equilibria`: steady sliding of an unforced model (no forcing,
+//! `A0 = 0`), its eigenvalues and stability, at one parameter set or along
+//! a parameter with every change of stability located.
+
+use clap::Args;
+use stickslip::model::{Model, ModelVisitor, SmoothModel};
+use stickslip::models::ModelRef;
+use stickslip::output::text::equilibria_table;
+use stickslip::study::equilibria::{scan, scan_smooth, single, single_smooth, Scan};
+
+use super::args::{Assignments, ModelArgs, ParamRange};
+use super::error::CliError;
+use super::outcome::Outcome;
+
+/// Arguments of `equilibria`.
+#[derive(Args)]
+pub struct EquilibriaArgs {
+    /// A piecewise model or scene, or a smooth-law model (its law itself):
+    /// `--model NAME` (default `stribeck`) or `--model-file PATH`.
+    #[command(flatten)]
+    model: ModelArgs,
+    /// The parameter and its grid, `NAME=from:to:count` (e.g.
+    /// `V=0.2:3:15`); without it, the one parameter set of `--set`.
+    #[arg(long)]
+    param: Option<String>,
+    /// The other parameters; the forcing amplitude must be 0, e.g.
+    /// `--set Q0=0`.
+    #[arg(long, value_delimiter = ',')]
+    set: Vec<String>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The scan, as a table or JSON.
+pub fn run(args: EquilibriaArgs) -> Result<Outcome, CliError> {
+    let set = Assignments::parse(&args.set)?;
+    let range = args.param.as_deref().map(ParamRange::parse).transpose()?;
+    let model = args.model.lookup("stribeck");
+    let scan = model
+        .visit(Equilibria { set, range })?
+        .ok_or_else(|| match &model {
+            ModelRef::Name(name) => {
+                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
+            }
+            _ => CliError::SmoothFile {
+                model: model.to_string(),
+            },
+        })??;
+    Ok(Outcome::ok(if args.json {
+        serde_json::to_string_pretty(&scan)?
+    } else {
+        equilibria_table(&scan)
+    }))
+}
+
+struct Equilibria {
+    set: Assignments,
+    range: Option<ParamRange>,
+}
+
+impl ModelVisitor for Equilibria {
+    type Output = Result<Scan, CliError>;
+
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        Some((|| {
+            let p = self.set.params::<M>(base)?;
+            Ok(match &self.range {
+                Some(r) => scan::<M>(p, &r.name, r.from, r.to, r.count)?,
+                None => single::<M>(p),
+            })
+        })())
+    }
+
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        Some((|| {
+            let p = self.set.params::<M>(base)?;
+            Ok(match &self.range {
+                Some(r) => scan_smooth::<M>(p, &r.name, r.from, r.to, r.count)?,
+                None => single_smooth::<M>(p),
+            })
+        })())
+    }
+}

@@ -1,0 +1,334 @@
+//! Self-excited (unforced) oscillators, against independent computations:
+//! steady sliding's eigenvalues against the characteristic polynomial and
+//! nalgebra's eigenvalues, the Hopf point of a smooth Stribeck law against
+//! the textbook condition `2 ζ ω_n = −(1/m) df/dv_rel` in closed form, the
+//! nonsmooth loss of stability of its piecewise scenes where the
+//! equilibrium sits on a breakpoint, and the Coulomb belt oscillator's
+//! stick-slip cycle against its closed form.
+
+use std::path::PathBuf;
+
+use nalgebra::Matrix2;
+use stickslip::dynamics::simulate::{SimOptions, Simulator};
+use stickslip::models::coulomb::{self, Coulomb};
+use stickslip::models::stribeck::{self, Stribeck};
+use stickslip::models::ModelRef;
+use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+use stickslip::orbit::equilibrium::{
+    eigenvalues, steady_sliding, steady_sliding_smooth, EquilibriumError, Loss, Seat, Verdict,
+};
+use stickslip::study::equilibria::{scan, scan_smooth, Scan};
+use stickslip::{Model, ModelVisitor, ParamSet, SmoothModel};
+
+fn belt() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/belt.ssm")
+}
+
+/// The eigenvalues solve `λ² + 2d λ + c = 0` and agree with nalgebra's
+/// eigenvalues of the companion matrix, for foci, nodes and saddles.
+#[test]
+fn eigenvalues_are_the_companion_matrix_roots() {
+    for &(two_d, c) in &[
+        (0.1, 1.0),
+        (-0.3, 4.0),
+        (3.0, 1.0),
+        (-3.0, 1.0),
+        (0.5, -2.0),
+        (1e-9, 1e6),
+        (1e4, 1e-4),
+    ] {
+        let e = eigenvalues(two_d, c);
+        let m = Matrix2::new(0.0, 1.0, -c, -two_d);
+        let reference = m.complex_eigenvalues();
+        let scale = two_d.abs().max(c.abs().sqrt());
+        for ev in e {
+            let (re, im) = (ev[0], ev[1]);
+            // λ² + 2d λ + c, real and imaginary parts.
+            let p_re = re * re - im * im + two_d * re + c;
+            let p_im = 2.0 * re * im + two_d * im;
+            assert!(
+                p_re.abs() <= 1e-12 * scale * scale && p_im.abs() <= 1e-12 * scale * scale,
+                "{two_d} {c}: {ev:?}"
+            );
+            let nearest = reference
+                .iter()
+                .map(|r| (r.re - re).hypot(r.im - im))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                nearest <= 1e-9 * scale,
+                "{two_d} {c}: {ev:?} vs {reference:?}"
+            );
+        }
+        // Product and sum of the roots.
+        let (a, b) = (e[0], e[1]);
+        let prod = a[0] * b[0] - a[1] * b[1];
+        assert!(
+            (prod - c).abs() <= 1e-12 * c.abs().max(scale * scale),
+            "{two_d} {c}"
+        );
+        assert!((a[0] + b[0] + two_d).abs() <= 1e-12 * scale, "{two_d} {c}");
+    }
+}
+
+/// Coulomb friction on a moving belt, unforced: the mass rests where the
+/// spring holds the kinetic friction, `x* = μk g / c`, with the viscous
+/// damping alone (the law is flat).
+#[test]
+fn coulomb_steady_sliding_is_where_the_spring_holds_the_friction() {
+    let p = coulomb::Params {
+        Q0: 0.0,
+        V: 0.5,
+        d: 0.05,
+        ..coulomb::Params::default()
+    };
+    let e = steady_sliding::<Coulomb>(&p).expect("steady sliding");
+    assert!((e.x - p.muk * p.g / p.c).abs() <= 1e-15);
+    assert_eq!(e.verdict, Verdict::Stable);
+    let w = (p.c - p.d * p.d).sqrt();
+    assert!((e.eigenvalues[0][0] + p.d).abs() <= 1e-15 && (e.eigenvalues[0][1] - w).abs() <= 1e-15);
+    // Forced, or with the belt at rest, there is none, and the error says why.
+    let forced = coulomb::Params { Q0: 0.5, ..p };
+    assert!(matches!(
+        steady_sliding::<Coulomb>(&forced),
+        Err(EquilibriumError::Forced { .. })
+    ));
+    let at_rest = coulomb::Params { V: 0.0, ..p };
+    let err = steady_sliding::<Coulomb>(&at_rest).unwrap_err();
+    assert!(matches!(err, EquilibriumError::OnStick { .. }), "{err}");
+    assert!(err.to_string().contains("Sigma1"), "{err}");
+}
+
+/// The Stribeck law: `f'(0) = −(μs − μk) g / vs · e^{−V/vs} + σ` at the rest
+/// state (relative velocity `−V`), so steady sliding is stable iff
+/// `2 d + f'(0) > 0`, and the Hopf point is `V* = vs ln((μs − μk) g /
+/// (vs (2 d + σ)))`. The located point agrees to 1e-9 (relative), for
+/// several dampings.
+#[test]
+fn the_hopf_point_of_a_smooth_law_is_the_textbook_condition() {
+    for &d in &[0.02, 0.1, 0.4, 1.0] {
+        let base = stribeck::Params {
+            Q0: 0.0,
+            d,
+            ..stribeck::Params::default()
+        };
+        let closed =
+            base.vs * ((base.mus - base.muk) * base.g / (base.vs * (2.0 * d + base.sigma))).ln();
+        let s = scan_smooth::<Stribeck>(base, "V", 0.05, 6.0, 13).expect("scan");
+        let hopf: Vec<_> = s
+            .changes
+            .iter()
+            .filter(|c| c.change.loss == Loss::Hopf)
+            .collect();
+        assert_eq!(hopf.len(), 1, "d = {d}: {:?}", s.changes);
+        let at = hopf[0].change.at;
+        assert!(
+            (at - closed).abs() <= 1e-9 * closed,
+            "d = {d}: {at} vs {closed}"
+        );
+        assert_eq!(hopf[0].change.before, Some(Verdict::Unstable));
+        assert_eq!(hopf[0].change.after, Some(Verdict::Stable));
+        // Below and above by 1e-6: unstable, stable; the eigenvalues'
+        // real part is −(2 d + f'(0)) / 2 from the law's exact slope.
+        for (v, stable) in [
+            (closed * (1.0 - 1e-6), false),
+            (closed * (1.0 + 1e-6), true),
+        ] {
+            let p = stribeck::Params { V: v, ..base };
+            let e = steady_sliding_smooth::<Stribeck>(&p).expect("steady sliding");
+            assert_eq!(e.verdict == Verdict::Stable, stable, "d = {d}, V = {v}");
+            let slope = -(p.mus - p.muk) * p.g / p.vs * (-v / p.vs).exp() + p.sigma;
+            assert!(
+                (e.two_d - (2.0 * d + slope)).abs() <= 1e-13,
+                "{} vs {}",
+                e.two_d,
+                2.0 * d + slope
+            );
+            let [f, _] = Stribeck::kinetic(&p, 0.0);
+            assert!((e.x + f / p.c).abs() <= 1e-15);
+        }
+    }
+}
+
+struct Scanned(&'static str, f64, f64, usize);
+
+impl ModelVisitor for Scanned {
+    type Output = (Scan, Vec<f64>);
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        let s = scan::<M>(base, self.0, self.1, self.2, self.3).expect("scan");
+        // At each located change, the crossed boundary's velocity.
+        let at_boundary = s
+            .changes
+            .iter()
+            .filter_map(|c| match c.change.loss {
+                Loss::Band { boundary } => {
+                    let p = base
+                        .with_pairs(M::identity(&base), &[(self.0, c.change.at)])
+                        .ok()?;
+                    Some(M::boundary_velocity(&p, boundary))
+                }
+                _ => None,
+            })
+            .collect();
+        Some((s, at_boundary))
+    }
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        Some((
+            scan_smooth::<M>(base, self.0, self.1, self.2, self.3).expect("scan"),
+            Vec::new(),
+        ))
+    }
+}
+
+/// A piecewise law loses stability where the equilibrium crosses a
+/// breakpoint: located there to the rounding of the boundary's velocity,
+/// stable on one side and not on the other. As the pieces refine, the
+/// threshold approaches the law's own Hopf point.
+#[test]
+fn a_piecewise_law_loses_stability_on_a_breakpoint() {
+    let exact = -0.5 * (0.1f64).ln(); // belt.ssm: 2ζ√c v0 m / ((μs − μd) FN) = 0.1
+    let (law, _) = ModelRef::File {
+        path: belt(),
+        scene: None,
+    }
+    .visit(Scanned("vd", 0.2, 3.0, 15))
+    .expect("loads")
+    .expect("smooth");
+    assert_eq!(law.changes.len(), 1);
+    assert!(
+        (law.changes[0].change.at - exact).abs() <= 1e-9 * exact,
+        "{:?}",
+        law.changes
+    );
+    let mut errors = Vec::new();
+    for scene in ["pl8", "pl16", "pl32", "pl64"] {
+        let (s, at_boundary) = ModelRef::File {
+            path: belt(),
+            scene: Some(scene.to_string()),
+        }
+        .visit(Scanned("vd", 0.2, 3.0, 15))
+        .expect("loads")
+        .expect("piecewise");
+        let bands: Vec<_> = s
+            .changes
+            .iter()
+            .filter(|c| matches!(c.change.loss, Loss::Band { .. }))
+            .collect();
+        assert_eq!(bands.len(), 1, "{scene}: {:?}", s.changes);
+        let c = &bands[0].change;
+        assert_ne!(c.before, c.after, "{scene}");
+        // On the boundary: its velocity is 0 to a few ulps of the belt speed.
+        assert!(
+            at_boundary[0].abs() <= 8.0 * f64::EPSILON * c.at,
+            "{scene}: {at_boundary:?}"
+        );
+        assert!(matches!(
+            c.equilibrium.map(|e| e.seat),
+            Some(Seat::Domain(_)) | Some(Seat::Boundary { .. })
+        ));
+        errors.push((c.at - exact).abs() / exact);
+    }
+    // Closer with the finest scenes than with the coarsest.
+    assert!(errors[3] < errors[0], "{errors:?}");
+}
+
+/// The Coulomb belt oscillator without damping or forcing: the stick ends at
+/// `x_r = μs g / c`; the slip is a half-ellipse about `x_k = μk g / c` of
+/// amplitude `A = √((x_r − x_k)² + V²/c)`, back to the belt speed at `2 x_k −
+/// x_r`. Stick `2 (x_r − x_k) / V`, slip `(π + 2 atan(V / (ω (x_r − x_k)))) / ω`,
+/// largest `|x|` = `x_k + A`; the cycle is superstable (multiplier 0). The
+/// slip ends in a stick where the kinetic friction holds the spring there,
+/// `|c (2 x_k − x_r)| < μk g`, i.e. `μs < 3 μk` (SPEC §3: otherwise the mass
+/// passes the belt speed), which every case here meets.
+#[test]
+fn the_coulomb_stick_slip_cycle_is_its_closed_form() {
+    for &(v, mus, muk, c) in &[
+        (0.5, 0.4, 0.3, 1.0),
+        (0.2, 0.6, 0.25, 4.0),
+        (1.5, 0.5, 0.2, 0.5),
+    ] {
+        let p = coulomb::Params {
+            Q0: 0.0,
+            d: 0.0,
+            V: v,
+            mus,
+            muk,
+            c,
+            ..coulomb::Params::default()
+        };
+        assert!(mus < 3.0 * muk, "a cycle of one stick and one slip");
+        let w = c.sqrt();
+        let (xr, xk) = (mus * p.g / c, muk * p.g / c);
+        let y0 = xr - xk;
+        let amp = y0.hypot(v / w);
+        let stick = 2.0 * y0 / v;
+        let slip = (std::f64::consts::PI + 2.0 * (v / (w * y0)).atan()) / w;
+        let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).expect("params");
+        let start = sim.start(0.0, v, 0.0).expect("start");
+        let Attractor::Autonomous(cycle) =
+            attractor::find(&sim, start, AttractorOptions::default()).expect("settles")
+        else {
+            panic!("an autonomous cycle")
+        };
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * b.abs().max(1.0);
+        assert!(close(cycle.stick, stick), "{} vs {stick}", cycle.stick);
+        assert!(close(cycle.slip, slip), "{} vs {slip}", cycle.slip);
+        assert!(close(cycle.period, stick + slip));
+        assert!(
+            close(cycle.x, 2.0 * xk - xr),
+            "{} vs {}",
+            cycle.x,
+            2.0 * xk - xr
+        );
+        let a = cycle.amplitude.expect("closed form");
+        assert!(
+            close(a.x, (xk + amp).max((xk - amp).abs())),
+            "{} vs {}",
+            a.x,
+            xk + amp
+        );
+        assert!(close(a.v, v.max(amp * w)), "{} vs {}", a.v, amp * w);
+        assert_eq!(cycle.is_stable(), Some(true));
+        assert!(cycle.multiplier.expect("multiplier").abs() <= 1e-12);
+    }
+}
+
+/// A damped unforced simulation that comes to rest reports the steady
+/// sliding it rests at; the command line names it.
+#[test]
+fn simulate_names_steady_sliding() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["simulate", "--model-file"])
+        .arg(belt())
+        .args(["--scene", "pl16", "--set", "vd=1.5", "--json"])
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let e = &json["steady_sliding"];
+    assert_eq!(e["verdict"], "stable", "{json}");
+    // x* = −b_j / c_j of its domain, and the same as `equilibria` finds.
+    let (s, _) = ModelRef::File {
+        path: belt(),
+        scene: Some("pl16".to_string()),
+    }
+    .visit(Scanned("vd", 1.5, 1.5, 1))
+    .expect("loads")
+    .expect("piecewise");
+    let x = s.points[0].equilibrium.expect("steady sliding").x;
+    assert_eq!(e["x"].as_f64(), Some(x));
+    let text = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["simulate", "--model-file"])
+        .arg(belt())
+        .args(["--scene", "pl16", "--set", "vd=1.5"])
+        .output()
+        .expect("runs");
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("steady sliding at x = ") && text.contains("stable"),
+        "{text}"
+    );
+}
