@@ -332,3 +332,41 @@ fn simulate_names_steady_sliding() {
         "{text}"
     );
 }
+
+struct Swept;
+
+impl ModelVisitor for Swept {
+    type Output = (Vec<stickslip::study::sweep::Transition>, Scan);
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        let s = stickslip::study::sweep::sweep::<M>(base, "vd", 0.2, 3.0, 15, Default::default())
+            .expect("sweep");
+        Some((
+            s.transitions,
+            scan::<M>(base, "vd", 0.2, 3.0, 15).expect("scan"),
+        ))
+    }
+}
+
+/// `sweep` on an unforced model: the equilibrium moving from band to band
+/// is no grazing; its one loss of stability is a steady-sliding transition
+/// at the value `equilibria` locates, into the stick-slip cycle.
+#[test]
+fn a_sweep_of_an_unforced_model_has_no_false_grazing() {
+    for scene in ["pl16", "pl64"] {
+        let (transitions, s) = ModelRef::File {
+            path: belt(),
+            scene: Some(scene.to_string()),
+        }
+        .visit(Swept)
+        .expect("loads")
+        .expect("piecewise");
+        assert_eq!(transitions.len(), 1, "{scene}: {transitions:?}");
+        let t = &transitions[0];
+        assert_eq!(
+            t.kind,
+            stickslip::bifurcation::TransitionKind::SteadySliding
+        );
+        assert_eq!(t.value, s.changes[0].change.at, "{scene}");
+        assert_eq!(t.to, "autonomous", "{scene}: {t:?}");
+    }
+}

@@ -69,6 +69,11 @@ pub enum TransitionKind {
     PeriodDoubling,
     /// A complex pair of eigenvalues on the unit circle: a torus is born.
     NeimarkSacker,
+    /// Steady sliding of an unforced oscillator changes stability: a pair
+    /// of eigenvalues of the equilibrium crosses the imaginary axis (a Hopf
+    /// point of a smooth law), or the equilibrium crosses a breakpoint of a
+    /// piecewise law where the law's slope jumps.
+    SteadySliding,
 }
 
 impl TransitionKind {
@@ -83,6 +88,7 @@ impl TransitionKind {
             TransitionKind::BranchPoint => "branch_point",
             TransitionKind::PeriodDoubling => "period_doubling",
             TransitionKind::NeimarkSacker => "neimark_sacker",
+            TransitionKind::SteadySliding => "steady_sliding_stability",
         }
     }
 

@@ -54,6 +54,7 @@ pub fn curve_style(kind: TransitionKind) -> (RGBColor, bool) {
         TransitionKind::BranchPoint => (RGBColor(90, 90, 90), true),
         TransitionKind::PeriodDoubling => (RGBColor(110, 20, 130), true),
         TransitionKind::NeimarkSacker => (RGBColor(130, 75, 0), true),
+        TransitionKind::SteadySliding => (RGBColor(0, 110, 130), true),
     }
 }
 

@@ -70,6 +70,7 @@ pub fn symbol_of(kind: TransitionKind) -> (Symbol, &'static str) {
         TransitionKind::StickOnset => (Symbol::Cross, "SO"),
         TransitionKind::StickVanishing => (Symbol::Cross, "SV"),
         TransitionKind::PassableOnset => (Symbol::Cross, "PO"),
+        TransitionKind::SteadySliding => (Symbol::Ring, "H"),
     }
 }
 
@@ -113,6 +114,7 @@ fn kind_name(k: TransitionKind) -> &'static str {
         TransitionKind::BranchPoint => "branch point (λ = 1)",
         TransitionKind::PeriodDoubling => "period doubling (λ = −1)",
         TransitionKind::NeimarkSacker => "Neimark–Sacker (|λ| = 1)",
+        TransitionKind::SteadySliding => "steady sliding changes stability",
     }
 }
 

@@ -6,6 +6,7 @@
 use crate::dynamics::simulate::Simulator;
 use crate::model::Model;
 use crate::orbit::attractor::{self, NoMotion};
+use crate::orbit::equilibrium::{locate_in, steady_sliding, Loss, Verdict};
 
 use super::explore::Explorer;
 use super::settle;
@@ -58,6 +59,12 @@ pub(super) fn regimes<M: Model>(
             } else {
                 (values[i], values[i - 1])
             };
+            if let Some(edge) = steady_sliding_edge::<M>(base, index, lo, hi, explorer, opts) {
+                if let Some(t) = edge {
+                    explorer.transition(t);
+                }
+                continue;
+            }
             for _ in 0..200 {
                 if (hi - lo).abs() <= opts.tolerance {
                     break;
@@ -97,4 +104,57 @@ pub(super) fn regimes<M: Model>(
     grid.into_iter()
         .map(|row| row.into_iter().flatten().collect())
         .collect()
+}
+
+/// An NM edge of an unforced model, where the NM is steady sliding: the
+/// equilibrium leaving one domain's band is no grazing. Where it goes on,
+/// stable, in the next band, nothing happens (`Some(None)`); where it
+/// loses stability, the change is located exactly ([`locate_in`]) and is a
+/// [`TransitionKind::SteadySliding`], with what a simulation from rest
+/// finds past it. `None` for a forced model (the edge is a grazing).
+fn steady_sliding_edge<M: Model>(
+    base: &M::Params,
+    index: usize,
+    lo: f64,
+    hi: f64,
+    explorer: &mut Explorer<'_, M>,
+    opts: &SweepOptions,
+) -> Option<Option<Transition>> {
+    let at = |v: f64| {
+        with(base, index, v)
+            .map_err(|_| crate::orbit::equilibrium::EquilibriumError::NoBand)
+            .and_then(|p| steady_sliding::<M>(&p))
+    };
+    let e_lo = at(lo).ok()?;
+    if e_lo.verdict != Verdict::Stable {
+        return None;
+    }
+    if matches!(at(hi), Ok(e) if e.verdict == Verdict::Stable) {
+        return Some(None);
+    }
+    let (a, b) = if lo < hi { (lo, hi) } else { (hi, lo) };
+    let p = with(base, index, lo).ok()?;
+    let change = locate_in::<M, _>(&p, at, a, b, 0.0)?;
+    let info = M::info(base);
+    let boundary = match change.loss {
+        Loss::Band { boundary } => Some(info.boundaries[boundary].label.to_string()),
+        _ => None,
+    };
+    let found = with(base, index, hi)
+        .ok()
+        .and_then(settle::simulator::<M>)
+        .map(|s| settle::from_rest(&s, opts));
+    let to = found
+        .as_ref()
+        .map_or("invalid".to_string(), |f| settle::name(info, f));
+    if let Some(found) = found {
+        explorer.take(hi, &found);
+    }
+    Some(Some(Transition {
+        value: change.at,
+        from: "steady sliding".into(),
+        to,
+        kind: TransitionKind::SteadySliding,
+        boundary,
+    }))
 }
