@@ -101,7 +101,11 @@ class Motion(Result):
     ``structure`` (``P_{...}``), ``N`` (forcing periods per cycle),
     ``points`` (an ``m × 3`` array of switching points ``Wt, x, v``, with
     ``boundaries`` and ``mappings`` naming each), ``eigenvalues`` (complex),
-    ``stable`` and ``admissible``.
+    ``stable`` and ``admissible``. For an autonomous stick-slip cycle:
+    ``period``, ``stick_time``, ``multiplier`` (the nontrivial Floquet
+    multiplier, the trivial 1 removed) and ``stable``. For an NM of an
+    unforced model: ``steady_sliding``, the equilibrium it rests at (``x``,
+    ``eigenvalues``, ``verdict``, ``margin``), and ``stable``.
     """
 
     def __init__(self, data: Dict[str, Any], trajectory: Any, notes: List[str]) -> None:
@@ -122,6 +126,14 @@ class Motion(Result):
         self.admissible: Optional[bool] = data.get("admissible")
         self.violations: List[Dict[str, Any]] = data.get("violations", [])
         self.params: Dict[str, float] = data.get("params", {})
+        self.period: Optional[float] = data.get("period")
+        self.stick_time: Optional[float] = data.get("stick")
+        self.multiplier: Optional[float] = data.get("multiplier")
+        self.steady_sliding: Optional[Dict[str, Any]] = data.get("steady_sliding")
+        if self.kind == "autonomous_cycle" and self.multiplier is not None:
+            self.stable = abs(self.multiplier) < 1.0
+        if self.steady_sliding is not None:
+            self.stable = self.steady_sliding["verdict"] == "stable"
 
     @property
     def title(self) -> str:

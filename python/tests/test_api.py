@@ -227,3 +227,22 @@ def test_long_calls_release_the_gil(paper, what):
         pytest.skip(f"{what} took {took * 1e3:.1f} ms: too short to tell")
     # About one tick a millisecond while the call runs; with the GIL held, none.
     assert ticks >= max(5, int(took * 1000 / 10)), (ticks, took)
+
+
+def test_unforced_motions_carry_their_stability():
+    """The undamped Coulomb belt oscillator's stick-slip cycle (closed form:
+    stick 2 (x_r - x_k) / V, slip (pi + 2 atan(V / (x_r - x_k))) with c = 1),
+    and steady sliding of a damped one."""
+    import math
+
+    coulomb = stickslip.Model("coulomb")
+    cycle = coulomb.simulate((0.0, 0.5, 0.0), Q0=0, d=0, V=0.5)
+    assert cycle.kind == "autonomous_cycle"
+    assert abs(cycle.stick_time - 0.4) < 1e-10
+    assert abs(cycle.period - (0.4 + math.pi + 2 * math.atan(0.5 / 0.1))) < 1e-10
+    assert cycle.multiplier is not None and abs(cycle.multiplier) < 1e-12
+    assert cycle.stable is True
+    rest = coulomb.simulate(Q0=0, d=0.1, V=0.5)
+    assert rest.kind == "NM" and rest.stable is True
+    assert abs(rest.steady_sliding["x"] - 0.3) < 1e-15
+    assert rest.steady_sliding["verdict"] == "stable"

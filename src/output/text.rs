@@ -180,6 +180,9 @@ impl fmt::Display for Report {
                 r.v,
                 r.onset,
                 match r.multiplier {
+                    Some(m) if m.abs() <= 1e-12 => "stable, Floquet multiplier 0 to round-off \
+                        (the trivial 1 removed; the stick resets every perturbation)"
+                        .to_string(),
                     Some(m) if m.abs() < 1.0 =>
                         format!("stable, Floquet multiplier {m:.6e} (the trivial 1 removed)"),
                     Some(m) =>
