@@ -370,3 +370,25 @@ fn a_sweep_of_an_unforced_model_has_no_false_grazing() {
         assert_eq!(t.to, "autonomous", "{scene}: {t:?}");
     }
 }
+
+/// Forced and self-excited together: a weak forcing on the belt oscillator's
+/// stick-slip cycle gives a motion on a torus. `simulate` does not settle,
+/// and says what the motion does instead, from the Lyapunov exponents, and
+/// what to run next.
+#[test]
+fn an_unsettled_simulation_says_what_it_found() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["simulate", "--model-file"])
+        .arg(belt())
+        .args(["--scene", "pl16", "--set", "vd=0.5,Q0=0.05,W=1.618"])
+        .output()
+        .expect("runs");
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no periodic motion"), "{err}");
+    assert!(
+        err.contains("what it does instead") && err.contains("quasi-periodic"),
+        "{err}"
+    );
+    assert!(err.contains("stickslip lyapunov"), "{err}");
+}

@@ -73,16 +73,7 @@ impl LyapunovReport {
                 format!("{x:+.9e}")
             }
         };
-        let verdict = match &s.verdict {
-            Verdict::Periodic { structure, n } => format!("periodic {structure}, N = {n}"),
-            Verdict::Chaotic => "chaotic".to_string(),
-            Verdict::QuasiPeriodic => "quasi-periodic".to_string(),
-            Verdict::NoMotion => "NM (no boundary contact)".to_string(),
-            Verdict::Stick => "stick (a stick that never ends)".to_string(),
-            Verdict::LongCycle { longer_than } => {
-                format!("cycle longer than {longer_than} forcing periods (no repeat, exponent < 0)")
-            }
-        };
+        let verdict = verdict_text(&s.verdict);
         let mut out = format!(
             "Lyapunov exponents of the stroboscopic map ({} forcing periods after {} of transient)\n",
             self.periods, self.transient
@@ -110,5 +101,19 @@ impl LyapunovReport {
             s.end.0, s.end.1, s.end.2
         );
         out
+    }
+}
+
+/// A verdict in words: `chaotic`, `quasi-periodic`, `periodic P_{…}, N = 2`.
+pub fn verdict_text(v: &Verdict) -> String {
+    match v {
+        Verdict::Periodic { structure, n } => format!("periodic {structure}, N = {n}"),
+        Verdict::Chaotic => "chaotic".to_string(),
+        Verdict::QuasiPeriodic => "quasi-periodic".to_string(),
+        Verdict::NoMotion => "NM (no boundary contact)".to_string(),
+        Verdict::Stick => "stick (a stick that never ends)".to_string(),
+        Verdict::LongCycle { longer_than } => {
+            format!("cycle longer than {longer_than} forcing periods (no repeat, exponent < 0)")
+        }
     }
 }
