@@ -392,3 +392,127 @@ fn an_unsettled_simulation_says_what_it_found() {
     );
     assert!(err.contains("stickslip lyapunov"), "{err}");
 }
+
+/// Newton with the period unknown (`orbit::autonomous`): from a guess
+/// perturbed by 1 % in every point and the period, the Coulomb cycle comes
+/// back to its closed form, and the belt's 12-mapping cycle to the one the
+/// simulation found. The first point's phase is held.
+#[test]
+fn newton_with_the_period_unknown_finds_the_cycle() {
+    use stickslip::orbit::autonomous::{solve, AutonomousError};
+    use stickslip::orbit::periodic::{NewtonOptions, SwitchingPoint};
+
+    struct Refined;
+    impl ModelVisitor for Refined {
+        type Output = Vec<(f64, f64)>;
+        fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+            let mut out = Vec::new();
+            let p = base
+                .with_pairs(M::identity(&base), &[("vd", 0.5)])
+                .or_else(|_| base.with_pairs(M::identity(&base), &[]))
+                .expect("params");
+            let sim = Simulator::<M>::new(p, SimOptions::default()).expect("params");
+            let v = M::boundary_velocity(&p, 0);
+            let start = sim.start(0.0, v, 0.0).expect("start");
+            let Attractor::Autonomous(cycle) =
+                attractor::find(&sim, start, AttractorOptions::default()).expect("settles")
+            else {
+                panic!("a cycle")
+            };
+            // The simulated cycle's points, from its events: re-simulate one
+            // cycle from its onset and record every switching point.
+            let w = M::oscillator(&p).frequency;
+            let shift = cycle.period * w;
+            let mut points = vec![SwitchingPoint {
+                phase: cycle.onset,
+                x: cycle.x,
+            }];
+            let seg = sim.start(cycle.x, cycle.v, cycle.onset).expect("onset");
+            sim.run(seg, cycle.onset + 1.5 * shift, |e| {
+                if points.len() < cycle.steps.len() {
+                    points.push(SwitchingPoint {
+                        phase: e.phase,
+                        x: e.x,
+                    });
+                }
+            })
+            .expect("one cycle");
+            assert_eq!(points.len(), cycle.steps.len());
+            let guess: Vec<SwitchingPoint> = points
+                .iter()
+                .enumerate()
+                .map(|(k, q)| SwitchingPoint {
+                    phase: if k == 0 { q.phase } else { q.phase + 0.01 },
+                    x: q.x * 1.01,
+                })
+                .collect();
+            let c = solve::<M>(
+                &p,
+                &cycle.steps,
+                &guess,
+                shift * 1.01,
+                NewtonOptions::default(),
+            )
+            .expect("converges");
+            assert_eq!(c.points[0].phase, points[0].phase, "the phase condition");
+            out.push((c.period(w), cycle.period));
+            for (a, b) in c.points.iter().zip(&points) {
+                out.push((a.x, b.x));
+                out.push((a.phase, b.phase));
+            }
+            // Forced: refused.
+            if let Ok(q) = p.with_pairs(M::identity(&p), &[("Q0", 0.5)]) {
+                assert!(matches!(
+                    solve::<M>(&q, &cycle.steps, &guess, shift, NewtonOptions::default()),
+                    Err(AutonomousError::Forced(_))
+                ));
+            }
+            Some(out)
+        }
+    }
+    for model in [
+        ModelRef::Name("coulomb".to_string()),
+        ModelRef::File {
+            path: belt(),
+            scene: Some("pl16".to_string()),
+        },
+    ] {
+        let pairs = if let ModelRef::Name(_) = model {
+            // Q0 = 0, d = 0, V = 0.5: the closed form of the test above.
+            struct Unforced;
+            impl ModelVisitor for Unforced {
+                type Output = Vec<(f64, f64)>;
+                fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+                    let p = base
+                        .with_pairs(M::identity(&base), &[("Q0", 0.0), ("d", 0.0), ("V", 0.5)])
+                        .expect("params");
+                    Refined.piecewise::<M>(p)
+                }
+            }
+            model.visit(Unforced).expect("model").expect("piecewise")
+        } else {
+            model.visit(Refined).expect("loads").expect("piecewise")
+        };
+        for (a, b) in pairs {
+            assert!((a - b).abs() <= 1e-10 * b.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+    // The Coulomb cycle's period is the closed form's.
+    let closed = 0.4 + std::f64::consts::PI + 2.0 * (0.5f64 / 0.1).atan();
+    let p = coulomb::Params {
+        Q0: 0.0,
+        d: 0.0,
+        V: 0.5,
+        ..coulomb::Params::default()
+    };
+    let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).expect("params");
+    let Attractor::Autonomous(c) = attractor::find(
+        &sim,
+        sim.start(0.0, 0.5, 0.0).expect("start"),
+        AttractorOptions::default(),
+    )
+    .expect("settles") else {
+        panic!("a cycle")
+    };
+    assert!((c.period - closed).abs() <= 1e-10);
+}

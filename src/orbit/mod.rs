@@ -9,6 +9,7 @@
 //! * [`stability`] — the monodromy matrix and its eigenvalues;
 //! * [`motion`] — a solved, checked periodic motion;
 //! * [`attractor`] — what a simulation settles on: a motion, a stick, a family;
+//! * [`autonomous`] — cycles of an unforced model by Newton, the period an unknown;
 //! * [`equilibrium`] — steady sliding of an unforced oscillator, its linearisation and loss of stability;
 //! * [`steady`] — a domain's steady forced response in closed form (the no-motion regime);
 //! * [`known`] — known stable motions seen stroboscopically, and a settle that stops near one;
@@ -46,6 +47,7 @@
 pub mod admissible;
 pub mod amplitude;
 pub mod attractor;
+pub mod autonomous;
 pub mod equilibrium;
 pub mod extrema;
 pub mod family;
