@@ -195,7 +195,7 @@ pub enum CliError {
     #[error("{unsettled}; what it does instead, from the exact tangent map over {periods} forcing periods: {verdict}, largest exponent {largest:+.6e} ± {error:.1e} per unit time. Next: `stickslip lyapunov` from the same start for the spectrum, `stickslip orbit-diagram` along a parameter for where it begins")]
     Unsettled {
         /// The simulation's own error.
-        unsettled: OrbitError,
+        unsettled: Box<OrbitError>,
         /// Forcing periods the exponents were accumulated over.
         periods: u32,
         /// Chaotic, quasi-periodic, a longer cycle, …

@@ -101,7 +101,7 @@ fn diagnose<M: Model>(
     let opts = LyapunovOptions::default();
     match spectrum(sim, start, opts) {
         Ok(s) => CliError::Unsettled {
-            unsettled,
+            unsettled: Box::new(unsettled),
             periods: opts.periods,
             verdict: verdict_text(&s.verdict),
             largest: s.exponents[0],
