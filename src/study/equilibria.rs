@@ -13,8 +13,8 @@
 //! let s = scan_smooth::<Stribeck>(base, "V", 0.2, 3.0, 8)?;
 //! let hopf = &s.changes[0];
 //! // The textbook condition: 2 d = −f'(0) at the Hopf point.
-//! let p = Params { V: hopf.at, ..base };
-//! let slope = (0.6 - 0.3) * 9.8 / 0.4 * (-hopf.at / 0.4).exp() - 0.05;
+//! let p = Params { V: hopf.change.at, ..base };
+//! let slope = (0.6 - 0.3) * 9.8 / 0.4 * (-hopf.change.at / 0.4).exp() - 0.05;
 //! assert!((2.0 * p.d - slope).abs() < 1e-12);
 //! # Ok::<(), stickslip::ParamError>(())
 //! ```
