@@ -516,3 +516,34 @@ fn newton_with_the_period_unknown_finds_the_cycle() {
     };
     assert!((c.period - closed).abs() <= 1e-10);
 }
+
+/// `equilibria`'s bad input: an empty grid, a fixed parameter, the forcing
+/// on; each a message that says what to do, never a panic.
+#[test]
+fn equilibria_refuses_bad_input_with_a_message() {
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .arg("equilibria")
+            .args(args)
+            .output()
+            .expect("runs");
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).to_string()
+                + &String::from_utf8_lossy(&out.stderr),
+        )
+    };
+    let belt = belt().display().to_string();
+    let (code, text) = run(&["--model-file", &belt, "--param", "vd=0.2:3:0"]);
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("between 1 and"), "{text}");
+    let (code, text) = run(&["--model", "paper::sweep_w", "--set", "Q0=0"]);
+    assert_eq!(code, Some(1), "{text}");
+    assert!(text.contains("free:"), "{text}");
+    let (code, text) = run(&["--model", "stribeck"]);
+    assert_eq!(code, Some(0), "{text}");
+    assert!(
+        text.contains("no steady sliding") && text.contains("Q0=0"),
+        "{text}"
+    );
+}

@@ -36,6 +36,14 @@ pub struct EquilibriaArgs {
 pub fn run(args: EquilibriaArgs) -> Result<Outcome, CliError> {
     let set = Assignments::parse(&args.set)?;
     let range = args.param.as_deref().map(ParamRange::parse).transpose()?;
+    if let Some(r) = &range {
+        if r.count == 0 || r.count > 1_000_000 {
+            return Err(CliError::GridCount {
+                text: args.param.clone().unwrap_or_default(),
+                count: r.count,
+            });
+        }
+    }
     let model = args.model.lookup("stribeck");
     let scan = model
         .visit(Equilibria { set, range })?

@@ -108,6 +108,14 @@ pub enum CliError {
         /// The text given.
         text: String,
     },
+    /// A grid of no points, or more than a million.
+    #[error("`{text}`: the count must be between 1 and 1000000 (got {count}), e.g. vd=0.2:3:15")]
+    GridCount {
+        /// The option's text.
+        text: String,
+        /// The count given.
+        count: usize,
+    },
     /// `curves --x`/`--y` not of the form `NAME=from:to`.
     #[error("{option} `{text}`: expected NAME=from:to, e.g. W=0.2:8")]
     BoxRange {
