@@ -423,7 +423,8 @@ fn an_unsettled_undamped_motion_says_so() {
                     e,
                     OrbitError::Unsettled {
                         periods: 40,
-                        undamped
+                        undamped,
+                        instead: None,
                     }
                 );
                 assert_eq!(e.to_string().contains("undamped"), undamped, "{e}");

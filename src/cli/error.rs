@@ -198,21 +198,6 @@ pub enum CliError {
     /// No periodic motion was found.
     #[error(transparent)]
     Orbit(#[from] OrbitError),
-    /// The simulation did not settle; the Lyapunov exponents say what it
-    /// does instead.
-    #[error("{unsettled}; what it does instead, from the exact tangent map over {periods} forcing periods: {verdict}, largest exponent {largest:+.6e} ± {error:.1e} per unit time. Next: `stickslip lyapunov` from the same start for the spectrum, `stickslip orbit-diagram` along a parameter for where it begins")]
-    Unsettled {
-        /// The simulation's own error.
-        unsettled: Box<OrbitError>,
-        /// Forcing periods the exponents were accumulated over.
-        periods: u32,
-        /// Chaotic, quasi-periodic, a longer cycle, …
-        verdict: String,
-        /// The largest exponent.
-        largest: f64,
-        /// Its error estimate.
-        error: f64,
-    },
     /// The sweep could not run.
     #[error(transparent)]
     Sweep(#[from] SweepError),

@@ -5,9 +5,6 @@
 use clap::Args;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::orbit::attractor::AttractorOptions;
-use stickslip::orbit::lyapunov::{spectrum, LyapunovOptions};
-use stickslip::orbit::motion::OrbitError;
-use stickslip::output::lyapunov_report::verdict_text;
 use stickslip::output::settled::settle;
 use stickslip::Model;
 
@@ -73,10 +70,7 @@ impl WithModel for Simulate {
             opts.max_periods = k;
         }
         let set = &self.set;
-        let settled = match settle(&sim, (x, v, phase), opts) {
-            Err(e @ OrbitError::Unsettled { .. }) => return Err(diagnose(&sim, (x, v, phase), e)),
-            other => other?,
-        };
+        let settled = settle(&sim, (x, v, phase), opts)?;
         let title = settled.title(M::info(&p).name, &set.to_string());
         let history = || {
             settled
@@ -87,26 +81,5 @@ impl WithModel for Simulate {
             "simulated from (x, v, W t) = ({x}, {v}, {phase}) ({set})\n"
         ))
         .with_report(&settled.report, history, title, &self.output)
-    }
-}
-
-/// A simulation that did not settle: the Lyapunov exponents from the same
-/// start say what it does instead (chaotic, quasi-periodic, a longer cycle),
-/// where they can be computed; otherwise the simulation's own error.
-fn diagnose<M: Model>(
-    sim: &Simulator<M>,
-    start: (f64, f64, f64),
-    unsettled: OrbitError,
-) -> CliError {
-    let opts = LyapunovOptions::default();
-    match spectrum(sim, start, opts) {
-        Ok(s) => CliError::Unsettled {
-            unsettled: Box::new(unsettled),
-            periods: opts.periods,
-            verdict: verdict_text(&s.verdict),
-            largest: s.exponents[0],
-            error: s.error,
-        },
-        Err(_) => CliError::Orbit(unsettled),
     }
 }

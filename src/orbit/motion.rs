@@ -93,19 +93,24 @@ pub enum OrbitError {
     Inadmissible(Box<Motion>),
     /// The simulation did not settle to a periodic motion or a certified NM.
     #[error(
-        "no periodic motion and no certified NM within {periods} forcing periods{}",
+        "no periodic motion and no certified NM within {periods} forcing periods{}{}",
         if *undamped {
             " (undamped: every domain has zero viscous damping, so transients need not decay; \
              the motion may drift for ever, quasi-periodically or slowly towards a neutral family)"
         } else {
             ""
-        }
+        },
+        instead.as_deref().map_or(String::new(), |i| format!("; {i}"))
     )]
     Unsettled {
         /// Forcing periods simulated.
         periods: u32,
         /// No domain has viscous damping (`2 d_j = 0` everywhere).
         undamped: bool,
+        /// What the motion does instead, where it was diagnosed (the
+        /// Lyapunov exponents from the same start: chaotic,
+        /// quasi-periodic, a longer cycle), and what to run next.
+        instead: Option<String>,
     },
     /// The simulation settled on a cycle through more mappings than the
     /// search looks for ([`crate::orbit::attractor::AttractorOptions::max_cycle`]).

@@ -8,8 +8,10 @@ use std::f64::consts::TAU;
 use crate::dynamics::simulate::{SimError, Simulator};
 use crate::model::Model;
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
+use crate::orbit::lyapunov::{spectrum, LyapunovOptions};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::output::history::History;
+use crate::output::lyapunov_report::verdict_text;
 use crate::output::report::Report;
 
 /// What the history of a settled simulation shows.
@@ -96,6 +98,17 @@ pub fn settle<M: Model>(
             None,
             Window::None,
         ),
+        Err(OrbitError::Unsettled {
+            periods,
+            undamped,
+            instead: None,
+        }) if periods >= DIAGNOSED_FROM => {
+            return Err(OrbitError::Unsettled {
+                periods,
+                undamped,
+                instead: diagnose(sim, (x, v, phase)),
+            })
+        }
         Err(e) => return Err(e),
     };
     Ok(Settled {
@@ -107,6 +120,28 @@ pub fn settle<M: Model>(
 }
 
 type Parts = (Report, String, Option<&'static str>, Window);
+
+/// A simulation capped below this many forcing periods is not diagnosed:
+/// the cap was the user's, and the diagnosis runs thousands of periods.
+pub const DIAGNOSED_FROM: u32 = 1000;
+
+/// What a motion that did not settle does instead: the verdict of its
+/// Lyapunov exponents from the same start (the exact tangent map), and
+/// what to run next. `None` where they cannot be computed.
+fn diagnose<M: Model>(sim: &Simulator<M>, start: (f64, f64, f64)) -> Option<String> {
+    let opts = LyapunovOptions::default();
+    let s = spectrum(sim, start, opts).ok()?;
+    Some(format!(
+        "what it does instead, from the exact tangent map over {} forcing periods: {}, \
+         largest exponent {:+.6e} ± {:.1e} per unit time. Next: `stickslip lyapunov` from the \
+         same start for the spectrum, `stickslip orbit-diagram` along a parameter for where it \
+         begins",
+        opts.periods,
+        verdict_text(&s.verdict),
+        s.exponents[0],
+        s.error
+    ))
+}
 
 fn motion_parts<M: Model>(sim: &Simulator<M>, motion: Motion) -> Parts {
     let heading = format!(

@@ -525,6 +525,7 @@ pub fn find_or_stop<M: Model, T>(
     Err(OrbitError::Unsettled {
         periods: opts.max_periods,
         undamped,
+        instead: None,
     })
 }
 
