@@ -52,6 +52,17 @@ pub enum Seat {
     Law,
 }
 
+impl Seat {
+    /// Its name in `info`: `domain 15`, `Sigma5`, `law`.
+    pub fn label(&self, info: &ModelInfo) -> String {
+        match *self {
+            Seat::Domain(j) => format!("domain {}", info.domains[j].label),
+            Seat::Boundary { boundary, .. } => info.boundaries[boundary].label.to_string(),
+            Seat::Law => "law".to_string(),
+        }
+    }
+}
+
 /// Stability of the equilibrium.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]

@@ -15,7 +15,7 @@ use crate::model::param::ParamSet;
 use crate::model::{Model, ModelInfo};
 use crate::orbit::admissible::Violation;
 use crate::orbit::attractor::{AutonomousCycle, NoMotion, PermanentStick};
-use crate::orbit::equilibrium::{steady_sliding, Equilibrium, Seat};
+use crate::orbit::equilibrium::{steady_sliding, Equilibrium};
 use crate::orbit::motion::Motion;
 use crate::orbit::periodic::{PeriodicSolver, Termination};
 use crate::orbit::stability::Stability;
@@ -367,11 +367,7 @@ impl Report {
     pub fn of_no_motion<M: Model>(p: &M::Params, nm: &NoMotion) -> Self {
         let info = M::info(p);
         let steady = steady_sliding::<M>(p).ok();
-        let seat = match steady.map(|e| e.seat) {
-            Some(Seat::Domain(j)) => format!("domain {}", info.domains[j].label),
-            Some(Seat::Boundary { boundary, .. }) => info.boundaries[boundary].label.to_string(),
-            _ => String::new(),
-        };
+        let seat = steady.map_or_else(String::new, |e| e.seat.label(info));
         Report::NoMotion(NoMotionReport {
             max_v: nm.max_v,
             model: info.name,

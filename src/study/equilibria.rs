@@ -170,7 +170,7 @@ pub fn scan<M: Model>(
     count: usize,
 ) -> Result<Scan, ParamError> {
     let info = M::info(&base);
-    let name = |seat: &Seat| seat_name(info, seat);
+    let name = |seat: &Seat| seat.label(info);
     let values = grid(from, to, count);
     scan_with(
         info.name,
@@ -210,7 +210,7 @@ pub fn scan_smooth<M: SmoothModel>(
 /// set `p` (a scan of one point, with no parameter).
 pub fn single<M: Model>(p: M::Params) -> Scan {
     let info = M::info(&p);
-    let name = |seat: &Seat| seat_name(info, seat);
+    let name = |seat: &Seat| seat.label(info);
     scan_with(
         info.name,
         "",
@@ -237,12 +237,4 @@ pub fn single_smooth<M: SmoothModel>(p: M::Params) -> Scan {
         |_, _, _| None,
     )
     .expect("a fixed parameter set")
-}
-
-fn seat_name(info: &crate::model::ModelInfo, seat: &Seat) -> String {
-    match *seat {
-        Seat::Domain(j) => format!("domain {}", info.domains[j].label),
-        Seat::Boundary { boundary, .. } => info.boundaries[boundary].label.to_string(),
-        Seat::Law => "law".to_string(),
-    }
 }

@@ -5,8 +5,9 @@
 
 use crate::dynamics::simulate::Simulator;
 use crate::model::Model;
-use crate::orbit::attractor::{self, NoMotion};
+use crate::orbit::attractor::{self, Attractor, NoMotion};
 use crate::orbit::equilibrium::{locate_in, steady_sliding, Loss, Verdict};
+use crate::orbit::motion::OrbitError;
 
 use super::explore::Explorer;
 use super::settle;
@@ -76,13 +77,7 @@ pub(super) fn regimes<M: Model>(
                     hi = mid;
                 }
             }
-            let found = with(base, index, hi)
-                .ok()
-                .and_then(settle::simulator::<M>)
-                .map(|s| settle::from_rest(&s, opts));
-            let to = found
-                .as_ref()
-                .map_or("invalid".to_string(), |f| settle::name(info, f));
+            let (to, found) = past::<M>(base, index, hi, opts);
             let dom = info.domains[j];
             let boundary = [dom.upper, dom.lower]
                 .into_iter()
@@ -140,13 +135,7 @@ fn steady_sliding_edge<M: Model>(
         Loss::Band { boundary } => Some(info.boundaries[boundary].label.to_string()),
         _ => None,
     };
-    let found = with(base, index, hi)
-        .ok()
-        .and_then(settle::simulator::<M>)
-        .map(|s| settle::from_rest(&s, opts));
-    let to = found
-        .as_ref()
-        .map_or("invalid".to_string(), |f| settle::name(info, f));
+    let (to, found) = past::<M>(base, index, hi, opts);
     if let Some(found) = found {
         explorer.take(hi, &found);
     }
@@ -157,4 +146,22 @@ fn steady_sliding_edge<M: Model>(
         kind: TransitionKind::SteadySliding,
         boundary,
     }))
+}
+
+/// What a simulation from rest finds at `value` past an edge, and its name
+/// (`invalid` where the parameters are).
+fn past<M: Model>(
+    base: &M::Params,
+    index: usize,
+    value: f64,
+    opts: &SweepOptions,
+) -> (String, Option<Result<Attractor, OrbitError>>) {
+    let found = with(base, index, value)
+        .ok()
+        .and_then(settle::simulator::<M>)
+        .map(|s| settle::from_rest(&s, opts));
+    let to = found
+        .as_ref()
+        .map_or("invalid".to_string(), |f| settle::name(M::info(base), f));
+    (to, found)
 }
