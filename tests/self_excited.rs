@@ -547,3 +547,84 @@ fn equilibria_refuses_bad_input_with_a_message() {
         "{text}"
     );
 }
+
+#[test]
+fn explore_cycle_branch() {
+    use stickslip::bifurcation::{follow, ContinuationOptions, Start};
+    use stickslip::orbit::structure::Structure;
+    struct Follow;
+    impl ModelVisitor for Follow {
+        type Output = ();
+        fn piecewise<M: Model>(self, base: M::Params) -> Option<()> {
+            let id = M::identity(&base);
+            let p = base.with_pairs(id, &[("vd", 0.5)]).expect("params");
+            let sim = Simulator::<M>::new(p, SimOptions::default()).expect("params");
+            let v = M::boundary_velocity(&p, 0);
+            let start = sim.start(0.0, v, 0.0).expect("start");
+            let Attractor::Autonomous(cycle) =
+                attractor::find(&sim, start, AttractorOptions::default()).expect("settles")
+            else {
+                panic!("a cycle")
+            };
+            let structure = Structure::autonomous(M::info(&p), &cycle.steps).expect("structure");
+            let m = cycle.points.len();
+            for k in 0..m {
+                let a = cycle.points[k];
+                let b = if k + 1 < m {
+                    cycle.points[k + 1]
+                } else {
+                    stickslip::orbit::periodic::SwitchingPoint {
+                        x: cycle.points[0].x,
+                        phase: 0.0,
+                    }
+                };
+                let e = M::mapping(&p, cycle.steps[k], a.x, a.phase, b.x, b.phase);
+                let pp = p.with_pairs(id, &[("vd", 0.5 + 1e-6)]).unwrap();
+                let fp = M::residual(&pp, cycle.steps[k], a.x, a.phase, b.x, b.phase);
+                eprintln!(
+                    "{k} {} res {:?} fp {:?}",
+                    M::info(&p).mappings[cycle.steps[k]].name,
+                    e.residual,
+                    fp
+                );
+            }
+            let index = p.index_of("vd").expect("vd");
+            let opts = ContinuationOptions {
+                bounds: (0.2, 3.0),
+                ..ContinuationOptions::default()
+            };
+            let b = follow::<M>(
+                &p,
+                index,
+                &Start {
+                    structure,
+                    value: 0.5,
+                    points: cycle.points.clone(),
+                    direction: None,
+                },
+                &opts,
+            )
+            .expect("follows");
+            for e in &b.ends {
+                eprintln!(
+                    "end {:?} at {} mu {:?} T {}",
+                    e.reason, e.at.value, e.at.stability, -e.at.points[0].phase
+                );
+            }
+            eprintln!(
+                "{} points; bifs {:?}",
+                b.points.len(),
+                b.bifurcations
+                    .iter()
+                    .map(|x| (x.kind, x.at.value))
+                    .collect::<Vec<_>>()
+            );
+            Some(())
+        }
+    }
+    let model = ModelRef::File {
+        path: belt(),
+        scene: Some("pl16".into()),
+    };
+    model.visit(Follow).expect("loads");
+}

@@ -62,6 +62,7 @@ fn sample(value: f64, points: Vec<(f64, f64)>, eigenvalues: Vec<[f64; 2]>) -> Br
         stable: modulus(&eigenvalues) < 1.0,
         max_abs_x: points.iter().map(|p| p.1.abs()).fold(0.0, f64::max),
         max_abs_v: 1.0 + value,
+        period: None,
         eigenvalues,
         points: points
             .into_iter()
@@ -91,6 +92,7 @@ fn motion(structure: &str, w: f64) -> MotionSummary {
         max_abs_x: x.abs(),
         max_abs_v: 1.0 + w,
         max_v: None,
+        period: None,
         points: vec![SwitchingPoint { phase, x }],
     }
 }
@@ -245,6 +247,7 @@ fn synthetic(param: &str) -> Sweep {
                     max_abs_x: 0.2,
                     max_abs_v: 0.3,
                     max_v: Some(0.3),
+                    period: None,
                     points: vec![],
                 });
             }

@@ -196,9 +196,12 @@ pub fn implied_periods(notation: &str) -> u32 {
 
 /// A structure's name with its period `N`: `P_{…}^N`, the `^N` left out
 /// where the notation implies it ([`implied_periods`]: `P_{…}` of one
-/// forcing period, `(P_{…})^{×k}` of `k`).
+/// forcing period, `(P_{…})^{×k}` of `k`) and for an autonomous cycle
+/// (`N = 0`: its period is a time, not a number of forcing periods).
 pub fn with_periods(notation: &str, n: u32) -> String {
-    if n == implied_periods(notation) {
+    // n = 0: an autonomous cycle, whose period is a time, not a number of
+    // forcing periods.
+    if n == 0 || n == implied_periods(notation) {
         notation.to_string()
     } else {
         format!("{notation}^{n}")

@@ -20,6 +20,15 @@
 //! points solve the equations exactly; a fold or branch point is located on
 //! `det(I − DP)`, which does not involve it.
 //!
+//! An autonomous cycle ([`Structure::is_autonomous`]) is held with its
+//! return at `W t = 0` and its first point's phase `−W T`: the unknowns are
+//! the same, the first phase carrying the period, and the return's
+//! linearization is `δu_m = (δx_0, 0)` instead of `δu_0`, so the closing
+//! block is `diag(1, 0) − M_m`. Its `DP` has the trivial eigenvalue 1 along
+//! the flow; the test functions and the stability see the reduced map
+//! `diag(μ, 0)`, `μ = tr DP − 1` the nontrivial multiplier (SPEC §14), so a
+//! fold of cycles is where `μ` passes 1 and the branch turns.
+//!
 //! The inner product on `(u, λ)` is scaled: displacements over the motion's
 //! length scale `L`, phases in radians, each switching point weighted `1/m`,
 //! and `λ` over the bounds' span `S`.
@@ -113,7 +122,6 @@ pub struct Bordered<M: Model> {
     structure: Structure,
     base: M::Params,
     index: usize,
-    shift: f64,
     /// Length scale `L` of displacements.
     pub length: f64,
     /// Span `S` of the parameter.
@@ -138,7 +146,6 @@ impl<M: Model> Bordered<M> {
     ) -> Self {
         let m = structure.len();
         Self {
-            shift: std::f64::consts::TAU * structure.periods() as f64,
             structure,
             base,
             index,
@@ -167,7 +174,7 @@ impl<M: Model> Bordered<M> {
 
     #[inline]
     fn ends(&self, points: &[SwitchingPoint], k: usize) -> (SwitchingPoint, SwitchingPoint) {
-        (points[k], arrival(points, k, self.shift))
+        (points[k], arrival(points, k, self.structure.shift(points)))
     }
 
     /// The scaled inner product's weight of component `(x, W t)`.
@@ -310,7 +317,14 @@ impl<M: Model> Bordered<M> {
             self.g[k] = gk;
             self.h[k] = hk;
         }
-        let cycle = Matrix2::identity() - big;
+        // The return: δu_m = δu_0, or (δx_0, 0) for an autonomous cycle
+        // (its return held at W t = 0).
+        let back = if self.structure.is_autonomous() {
+            Matrix2::new(1.0, 0.0, 0.0, 0.0)
+        } else {
+            Matrix2::identity()
+        };
+        let cycle = back - big;
         let sys = Matrix3::new(
             cycle[(0, 0)],
             cycle[(0, 1)],
@@ -432,9 +446,16 @@ impl<M: Model> Bordered<M> {
     }
 
     /// `DP` ordered `(W t, x)` at `x` (product of the local Jacobians), or
-    /// the mapping whose arrival is singular.
+    /// the mapping whose arrival is singular. For an autonomous cycle, the
+    /// reduced map `diag(0, μ)` with `μ = tr DP − 1` (the trivial
+    /// eigenvalue 1 along the flow replaced by 0).
     pub fn poincare_jacobian(&self, x: &State) -> Result<Matrix2<f64>, usize> {
         let p = self.params(x.value);
-        monodromy::<M>(&p, self.structure.steps(), self.shift, &x.points)
+        let shift = self.structure.shift(&x.points);
+        let dp = monodromy::<M>(&p, self.structure.steps(), shift, &x.points)?;
+        if self.structure.is_autonomous() {
+            return Ok(Matrix2::new(0.0, 0.0, 0.0, dp.trace() - 1.0));
+        }
+        Ok(dp)
     }
 }

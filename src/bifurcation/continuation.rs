@@ -357,9 +357,13 @@ impl<M: Model> Continuer<'_, M> {
     /// Whether the step from `a` to `b` passes the start again (phases
     /// compared modulo 2π: the same motion relabelled).
     fn passes_start(&self, start: &Sample, a: &Sample, b: &Sample) -> bool {
-        let turns = ((b.state.points[0].phase - start.state.points[0].phase)
-            / std::f64::consts::TAU)
-            .round();
+        // An autonomous cycle's phases are absolute (its return at 0).
+        let turns = if self.sys.structure().is_autonomous() {
+            0.0
+        } else {
+            ((b.state.points[0].phase - start.state.points[0].phase) / std::f64::consts::TAU)
+                .round()
+        };
         let mut x0 = start.state.clone();
         for q in &mut x0.points {
             q.phase += turns * std::f64::consts::TAU;
@@ -673,6 +677,15 @@ pub fn follow<M: Model>(
     let mut p = *base;
     p.set(index, start.value);
     p.check()?;
+    if start.structure.is_autonomous() {
+        let forcing = M::oscillator(&p).amplitude;
+        if forcing != 0.0 || !(start.points[0].phase < 0.0) {
+            return Err(ContinuationError::Start(format!(
+                "an autonomous cycle needs the forcing off (A0 = {forcing}) and its return held at W t = 0 (first phase {} must be −W T < 0)",
+                start.points[0].phase
+            )));
+        }
+    }
     let mut sys = system::<M>(
         base,
         index,
@@ -685,10 +698,15 @@ pub fn follow<M: Model>(
         points: start.points.clone(),
         value: start.value,
     };
-    // Phase origin: 0 <= W t_0 < 2π.
-    let turns = (x.points[0].phase / std::f64::consts::TAU).floor();
+    // Phase origin: 0 <= W t_0 < 2π; an autonomous cycle is given with its
+    // return at 0 (`Structure::shift`).
+    let origin = if start.structure.is_autonomous() {
+        0.0
+    } else {
+        std::f64::consts::TAU * (x.points[0].phase / std::f64::consts::TAU).floor()
+    };
     for q in &mut x.points {
-        q.phase -= turns * std::f64::consts::TAU;
+        q.phase -= origin;
     }
     let (tangent, both) = match &start.direction {
         None => {

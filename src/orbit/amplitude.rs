@@ -51,7 +51,7 @@ pub fn of_motion<M: Model>(
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Option<Amplitude> {
-    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let shift = structure.shift(points);
     of_cycle::<M>(p, structure.steps(), shift, points)
 }
 

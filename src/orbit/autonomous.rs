@@ -2,19 +2,24 @@
 //! (`A0 = 0`, SPEC §14) on a mapping structure, with its period an unknown.
 //!
 //! The unknowns are the switching points `(x_k, W t_k)` of the cycle's `m`
-//! mappings and the cycle's phase length `S = W T`; the residuals are the
-//! generated mappings' (two per mapping), the last one arriving at the first
-//! point `S` later. Time has no origin, so the phase condition fixes the
-//! first point's phase: `W t_0` is not an unknown, and the system stays
-//! square (`2m` unknowns: `m` displacements, `m − 1` phases, `S`). Its
-//! Jacobian is the generated one, the last mapping's arrival-phase column
-//! doubling as `∂/∂S`. A natural first point is a stick's release or onset,
-//! whose velocity the boundary fixes.
+//! mappings with the last one arriving back at the first point; time has no
+//! origin, so the return is held at a fixed phase and the first point's
+//! phase carries the period `S = W T` (the gauge of
+//! [`Structure::autonomous`]). The system stays square (`2m` unknowns, `2m`
+//! residuals) and is the forced case's with one change in its closing row:
+//! [`PeriodicSolver`] solves both, by elimination along the cycle on the
+//! generated `2×2` blocks, with no allocation per Newton step. A natural
+//! first point is a stick's onset or release, whose velocity the boundary
+//! fixes.
+//!
+//! Where a stick-slip cycle's stick shrinks to nothing along a parameter,
+//! the cycle becomes a slip cycle touching the stick boundary: [`without_stick`]
+//! gives that slip cycle's structure and points, from which a sweep follows
+//! it (a non-smooth fold of cycles).
 
-use nalgebra::{DMatrix, DVector};
-
-use crate::model::Model;
-use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use crate::model::{MappingKind, Model, ModelInfo};
+use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
+use crate::orbit::structure::Structure;
 
 /// A solved autonomous cycle.
 #[derive(Clone, Debug, PartialEq)]
@@ -83,98 +88,146 @@ pub fn solve<M: Model>(
         .iter()
         .all(|q| q.x.is_finite() && q.phase.is_finite())
         && shift.is_finite();
-    if m == 0 || points.len() != m || !finite {
+    let structure = Structure::autonomous(M::info(p), steps).ok();
+    let (Some(structure), true, true) = (structure, points.len() == m, finite) else {
         return Err(AutonomousError::Guess {
             got: points.len(),
             want: m,
         });
-    }
-    // Length scale of the displacements, for a scale-free step criterion.
-    let scale = points.iter().map(|q| q.x.abs()).fold(0.0, f64::max).max(
-        (0..M::info(p).boundaries.len())
-            .map(|b| M::boundary_velocity(p, b).abs() / osc.frequency)
-            .fold(0.0, f64::max),
-    );
-    let scale = if scale > 0.0 { scale } else { 1.0 };
-    let mut pts = points.to_vec();
-    let mut s = shift;
-    let n = 2 * m;
-    let mut jac = DMatrix::<f64>::zeros(n, n);
-    let mut res = DVector::<f64>::zeros(n);
-    // Unknown columns: x_k at 2k; W t_k at 2k − 1 (k ≥ 1); S at the last.
-    let x_col = |k: usize| 2 * k;
-    let phase_col = |k: usize| if k == 0 { None } else { Some(2 * k - 1) };
-    let s_col = n - 1;
-    let mut residual = f64::INFINITY;
-    for iteration in 0..=opts.max_iterations {
-        jac.fill(0.0);
-        for k in 0..m {
-            let a = pts[k];
-            let (next, b) = if k + 1 < m {
-                (k + 1, pts[k + 1])
-            } else {
-                (
-                    0,
-                    SwitchingPoint {
-                        phase: pts[0].phase + s,
-                        x: pts[0].x,
-                    },
-                )
-            };
-            let e = M::mapping(p, steps[k], a.x, a.phase, b.x, b.phase);
-            for r in 0..2 {
-                res[2 * k + r] = e.residual[r];
-                jac[(2 * k + r, x_col(k))] += e.d_prev[(r, 0)];
-                if let Some(c) = phase_col(k) {
-                    jac[(2 * k + r, c)] += e.d_prev[(r, 1)];
-                }
-                jac[(2 * k + r, x_col(next))] += e.d_next[(r, 0)];
-                if k + 1 < m {
-                    if let Some(c) = phase_col(next) {
-                        jac[(2 * k + r, c)] += e.d_next[(r, 1)];
-                    }
-                } else {
-                    jac[(2 * k + r, s_col)] += e.d_next[(r, 1)];
-                }
+    };
+    // Held with the return at W t = 0: the first phase is −S.
+    let held = points[0].phase;
+    let origin = held + shift;
+    let mut pts: Vec<SwitchingPoint> = points
+        .iter()
+        .map(|q| SwitchingPoint {
+            phase: q.phase - origin,
+            x: q.x,
+        })
+        .collect();
+    let mut solver = PeriodicSolver::<M>::new(structure);
+    match solver.solve(p, &mut pts, opts) {
+        Termination::Converged {
+            iterations,
+            residual,
+        } => {
+            let s = -pts[0].phase;
+            let back = held + s;
+            for q in &mut pts {
+                q.phase += back;
             }
-        }
-        residual = res.amax();
-        if !residual.is_finite() {
-            return Err(AutonomousError::Singular(iteration));
-        }
-        if iteration == opts.max_iterations {
-            break;
-        }
-        let step = jac
-            .clone()
-            .lu()
-            .solve(&(-&res))
-            .filter(|d| d.iter().all(|v| v.is_finite()))
-            .ok_or(AutonomousError::Singular(iteration))?;
-        for k in 0..m {
-            pts[k].x += step[x_col(k)];
-            if let Some(c) = phase_col(k) {
-                pts[k].phase += step[c];
-            }
-        }
-        s += step[s_col];
-        let size = (0..m)
-            .map(|k| {
-                let dx = (step[x_col(k)] / scale).abs();
-                dx.max(phase_col(k).map_or(0.0, |c| step[c].abs()))
-            })
-            .fold(step[s_col].abs(), f64::max);
-        if size <= opts.tolerance {
-            return Ok(Cycle {
+            pts[0].phase = held;
+            Ok(Cycle {
                 points: pts,
                 shift: s,
-                iterations: iteration + 1,
+                iterations,
                 residual,
-            });
+            })
         }
+        Termination::Singular { iterations, .. } => Err(AutonomousError::Singular(iterations)),
+        Termination::NotConverged {
+            iterations,
+            residual,
+            ..
+        } => Err(AutonomousError::NotConverged {
+            iterations,
+            residual,
+        }),
     }
-    Err(AutonomousError::NotConverged {
-        iterations: opts.max_iterations,
-        residual,
-    })
+}
+
+/// The excursion of a cycle that shrinks to nothing where a branch ends:
+/// of the mappings that leave boundary `boundary` and return to it (a stick
+/// on it, or a flow beyond it and back; any boundary when `None`), the
+/// shortest in time, if its neighbours are two flows of one domain (which
+/// merge when it is gone: [`without`]). `sticks` restricts the choice to
+/// stick mappings.
+pub fn shrinking(
+    info: &ModelInfo,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    boundary: Option<usize>,
+    sticks: bool,
+) -> Option<usize> {
+    let steps = structure.steps();
+    let m = steps.len();
+    if points.len() != m || m < 3 {
+        return None;
+    }
+    let shift = structure.shift(points);
+    let duration =
+        |k: usize| crate::orbit::periodic::arrival(points, k, shift).phase - points[k].phase;
+    (0..m)
+        .filter(|&k| {
+            let q = &info.mappings[steps[k]];
+            let (a, b) = (
+                &info.mappings[steps[(k + m - 1) % m]],
+                &info.mappings[steps[(k + 1) % m]],
+            );
+            q.from == q.to
+                && boundary.is_none_or(|b| q.from == b)
+                && (!sticks || q.kind == MappingKind::Stick)
+                && a.domain.is_some()
+                && a.domain == b.domain
+        })
+        .min_by(|&a, &b| duration(a).total_cmp(&duration(b)))
+}
+
+/// The cycle of `structure` through `points` (held as
+/// [`Structure::autonomous`] holds them) with mapping `k` removed, where
+/// it has shrunk to nothing: a stick that vanishes (the stick-slip cycle
+/// becomes a slip cycle touching the stick boundary) or a flow beyond a
+/// boundary and back that vanishes at a grazing. The two flows around it,
+/// in one domain, merge into one flow of that domain that touches the
+/// boundary inside. The cycle is rotated to start after the merged flow
+/// and held again with its return at `W t = 0`. `None` if the neighbours
+/// are not two flows of one domain or the model has no merged mapping.
+pub fn without(
+    info: &ModelInfo,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+    k: usize,
+) -> Option<(Structure, Vec<SwitchingPoint>)> {
+    let steps = structure.steps();
+    let m = steps.len();
+    if !structure.is_autonomous() || points.len() != m || m < 3 || k >= m {
+        return None;
+    }
+    let (before, after) = ((k + m - 1) % m, (k + 1) % m);
+    let (a, b) = (&info.mappings[steps[before]], &info.mappings[steps[after]]);
+    if a.domain.is_none() || a.domain != b.domain {
+        return None;
+    }
+    let merged = info.mappings.iter().position(|q| {
+        q.kind != MappingKind::Stick && q.domain == a.domain && q.from == a.from && q.to == b.to
+    })?;
+    // Applied order from the mapping after `after`, ending with the merged
+    // one (which starts where the flow into the stick started).
+    let first = (after + 1) % m;
+    let idx: Vec<usize> = (0..m - 2).map(|j| (first + j) % m).collect();
+    debug_assert_eq!(idx.last(), Some(&before));
+    let applied: Vec<usize> = idx
+        .iter()
+        .map(|&i| if i == before { merged } else { steps[i] })
+        .collect();
+    let shift = structure.shift(points);
+    let structure = Structure::autonomous(info, &applied).ok()?;
+    // Phases past the old return come one period later; the new return is
+    // a period after the new first point.
+    let unwrapped = |i: usize| {
+        if i >= first {
+            points[i].phase
+        } else {
+            points[i].phase + shift
+        }
+    };
+    let ret = unwrapped(first) + shift;
+    let pts = idx
+        .iter()
+        .map(|&i| SwitchingPoint {
+            phase: unwrapped(i) - ret,
+            x: points[i].x,
+        })
+        .collect();
+    Some((structure, pts))
 }

@@ -185,9 +185,12 @@ pub fn solve_with<M: Model>(
             }
         }
     }
-    // Phase origin: 0 <= W t_0 < 2π.
-    let shift =
-        (points[0].phase / (2.0 * std::f64::consts::PI)).floor() * 2.0 * std::f64::consts::PI;
+    // Phase origin: 0 <= W t_0 < 2π (an autonomous cycle keeps its return at 0).
+    let shift = if solver.structure().is_autonomous() {
+        0.0
+    } else {
+        (points[0].phase / (2.0 * std::f64::consts::PI)).floor() * 2.0 * std::f64::consts::PI
+    };
     if shift.is_finite() && shift != 0.0 {
         for pt in &mut points {
             pt.phase -= shift;

@@ -186,7 +186,6 @@ impl Default for NewtonOptions {
 #[derive(Clone, Debug)]
 pub struct PeriodicSolver<M: Model> {
     structure: Structure,
-    shift: f64,
     a: Vec<Matrix2<f64>>,
     g: Vec<Vector2<f64>>,
     delta: Vec<Vector2<f64>>,
@@ -209,10 +208,8 @@ impl<M: Model> PeriodicSolver<M> {
     /// A solver for `structure` (allocates its workspace once).
     pub fn new(structure: Structure) -> Self {
         let m = structure.len();
-        let shift = 2.0 * std::f64::consts::PI * structure.periods() as f64;
         Self {
             structure,
-            shift,
             a: vec![Matrix2::zeros(); m],
             g: vec![Vector2::zeros(); m],
             delta: vec![Vector2::zeros(); m],
@@ -294,7 +291,7 @@ impl<M: Model> PeriodicSolver<M> {
     /// The point after point `k` (wrapping with the period shift).
     #[inline]
     fn next(&self, points: &[SwitchingPoint], k: usize) -> SwitchingPoint {
-        arrival(points, k, self.shift)
+        arrival(points, k, self.structure.shift(points))
     }
 
     /// Mapping `k` evaluated at the current points.
@@ -395,7 +392,14 @@ impl<M: Model> PeriodicSolver<M> {
             product = a * product;
             acc = a * acc + g;
         }
-        let cycle = Matrix2::identity() - product;
+        // The return: δu_m = δu_0, or (δx_0, 0) for an autonomous cycle
+        // (held with its return at W t = 0; the first phase carries −W T).
+        let back = if self.structure.is_autonomous() {
+            Matrix2::new(1.0, 0.0, 0.0, 0.0)
+        } else {
+            Matrix2::identity()
+        };
+        let cycle = back - product;
         let inv = cycle.try_inverse().ok_or(SingularStep {
             segment: None,
             reason: "I − DP is singular: an eigenvalue of the Poincaré map equals 1 (saddle-node)",
@@ -618,10 +622,23 @@ impl<M: Model> PeriodicSolver<M> {
         &self,
         p: &M::Params,
     ) -> Result<Matrix2<f64>, SingularStep> {
-        chain(M::info(p), self.structure.steps(), 0, |k| self.evals[k]).map_err(|k| SingularStep {
-            segment: Some(k),
-            reason: "the arrival is tangent to the boundary (grazing)",
-        })
+        chain(M::info(p), self.structure.steps(), 0, |k| self.evals[k])
+            .map(|dp| self.reduced(dp))
+            .map_err(|k| SingularStep {
+                segment: Some(k),
+                reason: "the arrival is tangent to the boundary (grazing)",
+            })
+    }
+
+    /// `DP` as reported: itself, or for an autonomous cycle the reduced map
+    /// `diag(0, μ)`, `μ = tr DP − 1` the nontrivial multiplier (the trivial
+    /// eigenvalue 1 along the flow replaced by 0, SPEC §14).
+    fn reduced(&self, dp: Matrix2<f64>) -> Matrix2<f64> {
+        if self.structure.is_autonomous() {
+            Matrix2::new(0.0, 0.0, 0.0, dp.trace() - 1.0)
+        } else {
+            dp
+        }
     }
 
     /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` at `points`,
@@ -631,7 +648,14 @@ impl<M: Model> PeriodicSolver<M> {
         p: &M::Params,
         points: &[SwitchingPoint],
     ) -> Result<Matrix2<f64>, SingularStep> {
-        monodromy::<M>(p, self.structure.steps(), self.shift, points).map_err(|k| SingularStep {
+        monodromy::<M>(
+            p,
+            self.structure.steps(),
+            self.structure.shift(points),
+            points,
+        )
+        .map(|dp| self.reduced(dp))
+        .map_err(|k| SingularStep {
             segment: Some(k),
             reason: "the arrival is tangent to the boundary (grazing)",
         })

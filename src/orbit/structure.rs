@@ -5,18 +5,27 @@
 use stickslip_codegen::structure as grammar;
 
 use crate::model::{MappingKind, ModelInfo, Side};
+use crate::orbit::periodic::SwitchingPoint;
 
 /// Why a structure was rejected (the grammar and its errors are shared with
 /// the model checker: `stickslip_codegen::structure`).
 pub use stickslip_codegen::structure::StructureError;
 
-/// A mapping structure with its period `N` (forcing periods per cycle).
+/// A mapping structure with its period `N` (forcing periods per cycle), or
+/// the structure of an autonomous cycle (an unforced model, SPEC §14), whose
+/// period is an unknown (`N = 0`).
+///
+/// An autonomous cycle's switching points are held in one gauge: time has
+/// no origin, so the cycle's return to its first point is put at `W t = 0`
+/// and the first point's phase is `−W T` ([`Structure::shift`]). The
+/// unknowns of the forced case, `(x_k, W t_k)`, then serve unchanged: the
+/// first point's phase carries the period.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Structure {
     /// Indices into `ModelInfo::mappings`, in application order (`σ1` first);
     /// stick mappings resolved to the exit side the next mapping needs.
     steps: Vec<usize>,
-    /// Forcing periods per cycle.
+    /// Forcing periods per cycle; 0 for an autonomous cycle.
     periods: u32,
 }
 
@@ -73,6 +82,30 @@ impl Structure {
             steps.push(idx);
         }
         Ok(Self { steps, periods })
+    }
+
+    /// The structure of an autonomous cycle (period unknown) from mapping
+    /// indices in application order.
+    pub fn autonomous(info: &ModelInfo, applied: &[usize]) -> Result<Self, StructureError> {
+        let mut s = Self::from_indices(info, applied, 1)?;
+        s.periods = 0;
+        Ok(s)
+    }
+
+    /// Whether this is an autonomous cycle's structure (period unknown).
+    pub fn is_autonomous(&self) -> bool {
+        self.periods == 0
+    }
+
+    /// The phase `W t` from the first switching point to the cycle's return
+    /// to it: `2π N`, or for an autonomous cycle (held with its return at
+    /// `W t = 0`) `−W t_0`.
+    pub fn shift(&self, points: &[SwitchingPoint]) -> f64 {
+        if self.is_autonomous() {
+            points.first().map_or(f64::NAN, |q| -q.phase)
+        } else {
+            std::f64::consts::TAU * self.periods as f64
+        }
     }
 
     /// Build from mapping indices in application order (as found by simulation).
@@ -186,6 +219,9 @@ impl Structure {
     /// the notation does not imply `N` (`P_{…}^2`; `(P_{…})^{×8}` is a
     /// motion of 8 forcing periods).
     pub fn label(&self, info: &ModelInfo) -> String {
+        if self.is_autonomous() {
+            return self.notation(info);
+        }
         grammar::with_periods(&self.notation(info), self.periods)
     }
 }

@@ -84,7 +84,15 @@ pub fn settle<M: Model>(
             let from = cycle.onset.max(phase);
             (
                 Report::of_autonomous(sim, &cycle),
-                format!("autonomous stick-slip cycle, T = {:.6}", cycle.period),
+                format!(
+                    "autonomous {} cycle, T = {:.6}",
+                    if cycle.stick > 0.0 {
+                        "stick-slip"
+                    } else {
+                        "slip"
+                    },
+                    cycle.period
+                ),
                 None,
                 Window::Simulated {
                     from,

@@ -168,14 +168,20 @@ impl fmt::Display for Report {
             ),
             Report::Autonomous(r) => writeln!(
                 f,
-                "autonomous stick-slip cycle (no forcing; model {}): {}, period T = {:.12} \
-                 (stick {:.12}, slip {:.12}); the stick begins at x = {:.12}, v = {} \
+                "autonomous {} cycle (no forcing; model {}): {}, period T = {:.12} \
+                 (stick {:.12}, slip {:.12}); the {} at x = {:.12}, v = {} \
                  (W t = {:.6}; W only sets the phase unit); {}",
+                if r.stick > 0.0 { "stick-slip" } else { "slip" },
                 r.model,
                 r.structure,
                 r.period,
                 r.stick,
                 r.slip,
+                if r.stick > 0.0 {
+                    "stick begins"
+                } else {
+                    "cycle passes its first boundary"
+                },
                 r.x,
                 r.v,
                 r.onset,

@@ -119,7 +119,7 @@ fn stick_ends(
     if mi.kind != MappingKind::Stick || points.len() != structure.len() {
         return None;
     }
-    let shift = std::f64::consts::TAU * structure.periods() as f64;
+    let shift = structure.shift(points);
     Some((mi.from, points[segment], arrival(points, segment, shift)))
 }
 

@@ -7,9 +7,11 @@ use crate::dynamics::simulate::{Event, EventKind, Location, Segment, Simulator};
 use crate::model::{MappingKind, Model, ModelInfo, Side};
 use crate::orbit::amplitude::Amplitude;
 use crate::orbit::motion::{solve, Motion, OrbitError};
-use crate::orbit::periodic::{NewtonOptions, SwitchingPoint};
+use crate::orbit::periodic::{NewtonOptions, SwitchingPoint, Termination};
+use crate::orbit::stability::Stability;
 use crate::orbit::steady::{steady_response, SteadyResponse};
 use crate::orbit::structure::Structure;
+use nalgebra::Matrix2;
 
 mod cycle;
 
@@ -121,12 +123,39 @@ pub struct AutonomousCycle {
     /// The largest `|x|` and `|v|` over the cycle, from the closed forms
     /// (`None` where a closed form does not exist).
     pub amplitude: Option<Amplitude>,
+    /// The switching points (the start of each of `steps`), held with the
+    /// cycle's return at `W t = 0`: the first one's phase is `−W T`
+    /// ([`Structure::shift`](crate::orbit::structure::Structure::shift)).
+    #[serde(skip)]
+    pub points: Vec<SwitchingPoint>,
 }
 
 impl AutonomousCycle {
     /// Stable: the nontrivial multiplier inside the unit circle.
     pub fn is_stable(&self) -> Option<bool> {
         self.multiplier.map(|m| m.abs() < 1.0)
+    }
+
+    /// The cycle as a periodic motion of its autonomous structure
+    /// ([`Structure::autonomous`]), its points held with the return at
+    /// `W t = 0`, and `DP` the reduced map `diag(0, μ)` (the trivial
+    /// eigenvalue 1 replaced by 0, as continuation holds it). `None` where
+    /// the multiplier does not exist or the mappings do not form a structure.
+    pub fn motion(&self, info: &ModelInfo) -> Option<Motion> {
+        let mu = self.multiplier?;
+        let structure = Structure::autonomous(info, &self.steps).ok()?;
+        let dp = Matrix2::new(0.0, 0.0, 0.0, mu);
+        Some(Motion {
+            structure,
+            points: self.points.clone(),
+            termination: Termination::Converged {
+                iterations: 0,
+                residual: 0.0,
+            },
+            dp: Some(dp),
+            stability: Some(Stability::of(&dp)),
+            violations: Vec::new(),
+        })
     }
 }
 
@@ -147,7 +176,9 @@ pub fn autonomous_multiplier<M: Model>(
 }
 
 /// The latest cycle between two stick onsets at the same state, if the
-/// forcing vanishes (`A0 = 0`: the motion is autonomous). The onsets must
+/// forcing vanishes (`A0 = 0`: the motion is autonomous); without a stick,
+/// between two passes of one boundary in one direction at the same state
+/// (a slip cycle), refined by Newton on its structure. The states must
 /// agree to `1e-9` relative; every event in between defines a mapping.
 pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Option<AutonomousCycle> {
     let osc = sim.oscillator();
@@ -157,12 +188,18 @@ pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Optio
     let onsets: Vec<usize> = (0..events.len())
         .filter(|&i| events[i].kind == EventKind::StickOnset)
         .collect();
-    let &last = onsets.last()?;
+    let (first, last) = match onsets.last() {
+        Some(&last) => {
+            let b = &events[last];
+            let &first = onsets[..onsets.len() - 1].iter().rev().find(|&&i| {
+                let a = &events[i];
+                a.boundary == b.boundary && (a.x - b.x).abs() <= 1e-9 * (1.0 + b.x.abs())
+            })?;
+            (first, last)
+        }
+        None => slip_window(events)?,
+    };
     let b = &events[last];
-    let &first = onsets[..onsets.len() - 1].iter().rev().find(|&&i| {
-        let a = &events[i];
-        a.boundary == b.boundary && (a.x - b.x).abs() <= 1e-9 * (1.0 + b.x.abs())
-    })?;
     let window = &events[first..=last];
     let mut steps = Vec::with_capacity(window.len() - 1);
     let (mut stick, mut slip) = (0.0, 0.0);
@@ -178,24 +215,67 @@ pub fn autonomous_cycle<M: Model>(sim: &Simulator<M>, events: &[Event]) -> Optio
     let points: Vec<SwitchingPoint> = window[..window.len() - 1]
         .iter()
         .map(|e| SwitchingPoint {
-            phase: e.phase,
+            phase: e.phase - b.phase,
             x: e.x,
         })
         .collect();
-    let shift = b.phase - window[0].phase;
+    let (points, shift) = if stick > 0.0 {
+        (points, b.phase - window[0].phase)
+    } else {
+        // A slip cycle converges geometrically, not in one stick: Newton
+        // on its structure from the simulated points.
+        refine(sim, &steps, points)?
+    };
+    if stick == 0.0 {
+        slip = shift / osc.frequency;
+    }
     let multiplier = autonomous_multiplier::<M>(sim.params(), &steps, shift, &points);
     let amplitude = crate::orbit::amplitude::of_cycle::<M>(sim.params(), &steps, shift, &points);
     Some(AutonomousCycle {
+        x: points[0].x,
+        points,
         multiplier,
         amplitude,
         steps,
-        x: b.x,
         v: sim.velocity(b.boundary),
         onset: window[0].phase,
-        period: (b.phase - window[0].phase) / osc.frequency,
+        period: shift / osc.frequency,
         stick,
         slip,
     })
+}
+
+/// The latest pair of passes of one boundary in one direction at the same
+/// displacement (a slip cycle's return), as indices into `events`.
+fn slip_window(events: &[Event]) -> Option<(usize, usize)> {
+    let last = events.iter().rposition(|e| e.kind == EventKind::Pass)?;
+    let b = &events[last];
+    let first = events[..last].iter().rposition(|a| {
+        a.kind == EventKind::Pass
+            && a.boundary == b.boundary
+            && a.before == b.before
+            && a.after == b.after
+            && (a.x - b.x).abs() <= 1e-9 * (1.0 + b.x.abs())
+    })?;
+    Some((first, last))
+}
+
+/// Newton on the autonomous structure `steps` from the simulated points
+/// (held with their return at `W t = 0`): the refined points and period.
+fn refine<M: Model>(
+    sim: &Simulator<M>,
+    steps: &[usize],
+    mut points: Vec<SwitchingPoint>,
+) -> Option<(Vec<SwitchingPoint>, f64)> {
+    let structure = Structure::autonomous(sim.info(), steps).ok()?;
+    let mut solver = crate::orbit::periodic::PeriodicSolver::<M>::new(structure);
+    solver
+        .solve(sim.params(), &mut points, NewtonOptions::default())
+        .converged()
+        .then(|| {
+            let shift = -points[0].phase;
+            (points, shift)
+        })
 }
 
 /// What a simulation settles to.

@@ -130,6 +130,7 @@ mod tests {
             stable,
             max_abs_x: y.abs(),
             max_abs_v: y.abs(),
+            period: None,
             points: vec![],
         }
     }

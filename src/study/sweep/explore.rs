@@ -13,6 +13,7 @@ use crate::bifurcation::{born, follow, ContinuationOptions, Start};
 use crate::dynamics::simulate::Simulator;
 use crate::model::Model;
 use crate::orbit::attractor::Attractor;
+use crate::orbit::autonomous::{shrinking, without};
 use crate::orbit::motion::{Motion, OrbitError};
 use crate::orbit::periodic::Termination;
 use crate::orbit::structure::Structure;
@@ -120,6 +121,11 @@ impl<'a, M: Model> Explorer<'a, M> {
         match found {
             Ok(Attractor::Periodic(m)) => self.motion(value, m.clone()),
             Ok(Attractor::Stick(s)) => self.sticks.push((value, stick_summary(s))),
+            Ok(Attractor::Autonomous(c)) => {
+                if let Some(m) = self.simulator(value).and_then(|sim| c.motion(sim.info())) {
+                    self.motion(value, m)
+                }
+            }
             _ => {}
         }
     }
@@ -279,7 +285,17 @@ impl<'a, M: Model> Explorer<'a, M> {
             let old = motion_of(&structure, &end.at);
             let edge = end.at.value;
             let (past, found) = self.past(edge, dir, &old);
-            let to = settle::name(M::info(self.base), &found);
+            // An unstable autonomous cycle that loses an excursion goes on
+            // as the cycle without it (no simulation finds it).
+            let reduced = if structure.is_autonomous() {
+                self.reduced_cycle(id, k, kind, boundary, dir)
+            } else {
+                None
+            };
+            let to = match (kind, reduced) {
+                (Some(TransitionKind::Grazing), Some(name)) => name,
+                _ => settle::name(M::info(self.base), &found),
+            };
             if let Some(kind) = kind {
                 self.transitions.push(Transition {
                     value: edge,
@@ -292,6 +308,58 @@ impl<'a, M: Model> Explorer<'a, M> {
             self.found(past, &found);
             self.searches.push(past);
         }
+    }
+
+    /// Where an autonomous cycle ends because a stick or an excursion
+    /// beyond a boundary shrinks to nothing (end `k` of branch `id`, the
+    /// branch coming from `−dir`), the cycle without it
+    /// ([`crate::orbit::autonomous::without`]): followed from just beside
+    /// the end, on whichever side it exists. A stick-slip cycle whose stick
+    /// vanishes becomes a slip cycle, on the side the branch came from when
+    /// the two meet in a non-smooth fold of cycles (as where an unstable
+    /// slip cycle born at a Hopf point dies on the stable stick-slip
+    /// cycle); an unstable cycle, which no simulation finds, goes on so
+    /// past each excursion it loses.
+    fn reduced_cycle(
+        &mut self,
+        id: usize,
+        k: usize,
+        kind: Option<TransitionKind>,
+        boundary: Option<usize>,
+        dir: f64,
+    ) -> Option<String> {
+        let b = &self.branches[id];
+        let end = &b.ends[k];
+        let info = M::info(self.base);
+        let which = match kind {
+            Some(TransitionKind::StickVanishing) => {
+                shrinking(info, &b.structure, &end.at.points, None, true)
+            }
+            Some(TransitionKind::Grazing) if !end.at.stability.is_stable() => {
+                shrinking(info, &b.structure, &end.at.points, boundary, false)
+            }
+            _ => None,
+        };
+        let (structure, points) =
+            which.and_then(|i| without(info, &b.structure, &end.at.points, i))?;
+        let edge = end.at.value;
+        let (lo, hi) = self.continuation.bounds;
+        for side in [-dir, dir] {
+            let value = edge + side * (1e-7 * edge.abs().max(1.0)).max(4.0 * self.opts.tolerance);
+            if value < lo || value > hi {
+                continue;
+            }
+            self.queue.push_back(Pending {
+                start: Start {
+                    structure: structure.clone(),
+                    value,
+                    points: points.clone(),
+                    direction: None,
+                },
+                parent: None,
+            });
+        }
+        Some(settle::structure_name(info, &structure))
     }
 
     /// Just past `edge` in direction `dir`: simulate from `old`; a little

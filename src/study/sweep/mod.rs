@@ -84,6 +84,9 @@ pub struct MotionSummary {
     /// For NM, the largest velocity of the steady response.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_v: Option<f64>,
+    /// For an autonomous cycle (`N = 0`), its period `T` (a time).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
     /// Every switching point (phase mod 2π, x) — for the figures.
     #[serde(skip)]
     pub points: Vec<SwitchingPoint>,
@@ -154,6 +157,9 @@ pub struct BranchSample {
     pub max_abs_x: f64,
     /// The largest `|v|` over the cycle.
     pub max_abs_v: f64,
+    /// For an autonomous cycle (`N = 0`), its period `T` (a time).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
     /// Every switching point (phase mod 2π, x) — for the figures.
     #[serde(skip)]
     pub points: Vec<SwitchingPoint>,
@@ -345,6 +351,7 @@ fn summary<M: Model>(m: &Motion, p: &M::Params) -> MotionSummary {
         max_abs_x: amp.x,
         max_abs_v: amp.v,
         max_v: None,
+        period: period_of::<M>(p, &m.structure, &m.points),
         points: m
             .points
             .iter()
@@ -374,6 +381,7 @@ fn nm_summary<M: Model>(nm: &NoMotion, p: &M::Params) -> MotionSummary {
         max_abs_x: amp.x,
         max_abs_v: amp.v,
         max_v: Some(nm.max_v),
+        period: None,
         points: vec![],
     }
 }
@@ -389,6 +397,7 @@ fn stick_summary(s: &PermanentStick) -> MotionSummary {
         max_abs_x: s.x.abs(),
         max_abs_v: s.v.abs(),
         max_v: None,
+        period: None,
         points: vec![],
     }
 }
@@ -409,8 +418,21 @@ impl MotionSummary {
     }
 }
 
-fn sample(value: f64, points: &[SwitchingPoint], st: &Stability, amp: Amplitude) -> BranchSample {
+/// The period `T` of an autonomous cycle (`None` for a forced motion).
+fn period_of<M: Model>(p: &M::Params, s: &Structure, points: &[SwitchingPoint]) -> Option<f64> {
+    s.is_autonomous()
+        .then(|| s.shift(points) / M::oscillator(p).frequency)
+}
+
+fn sample(
+    value: f64,
+    points: &[SwitchingPoint],
+    st: &Stability,
+    amp: Amplitude,
+    period: Option<f64>,
+) -> BranchSample {
     BranchSample {
+        period,
         value,
         start_wt: points[0].phase.rem_euclid(TAU),
         start_x: points[0].x,
@@ -442,14 +464,16 @@ fn branch_samples<M: Model>(
         .points
         .iter()
         .map(|q| {
-            let amp = at(q.value).map_or(
+            let p = at(q.value);
+            let amp = p.as_ref().map_or(
                 Amplitude {
                     x: f64::NAN,
                     v: f64::NAN,
                 },
-                |p| amplitude_of::<M>(&p, &b.structure, &q.points),
+                |p| amplitude_of::<M>(p, &b.structure, &q.points),
             );
-            sample(q.value, &q.points, &q.stability, amp)
+            let period = p.and_then(|p| period_of::<M>(&p, &b.structure, &q.points));
+            sample(q.value, &q.points, &q.stability, amp, period)
         })
         .collect();
     let mut critical: Vec<usize> = b.bifurcations.iter().map(|f| f.index).collect();
@@ -664,15 +688,34 @@ fn sweep_grid<M: Model>(
     // One transition found from both sides (or from two branches) is listed
     // once, whatever else lies at the same value: mirror-image motions put
     // theirs there too, so equal transitions need not be adjacent.
+    let rests: Vec<f64> = transitions
+        .iter()
+        .filter(|u| u.kind == TransitionKind::SteadySliding)
+        .map(|u| u.value)
+        .collect();
     let mut unique: Vec<Transition> = Vec::with_capacity(transitions.len());
     for t in transitions {
-        let seen = unique.iter().any(|u| {
-            (u.value - t.value).abs() < 1e-8 * t.value.abs().max(1.0)
-                && u.kind == t.kind
-                && u.from == t.from
-                && u.boundary == t.boundary
-        });
-        if !seen {
+        let near = |u: &Transition| (u.value - t.value).abs() < 1e-8 * t.value.abs().max(1.0);
+        let same = |u: &Transition| near(u) && u.kind == t.kind && u.boundary == t.boundary;
+        // A change of structure met from both of its sides (A -> B, and B's
+        // own end at that value) is one transition too: the first kept,
+        // unless only the second names the structure on the other side.
+        if let Some(u) = unique.iter_mut().find(|u| same(u) && u.from == t.to) {
+            if !u.to.starts_with('P') && !u.to.starts_with('(') {
+                *u = t;
+            }
+            continue;
+        }
+        // An unstable autonomous cycle shrinking onto steady sliding where
+        // it changes stability is that transition.
+        let onto_rest = t.kind == TransitionKind::Grazing
+            && rests
+                .iter()
+                .any(|r| (r - t.value).abs() < 1e-8 * t.value.abs().max(1.0));
+        let seen = unique
+            .iter()
+            .any(|u| same(u) && (u.from == t.from || u.to == t.from));
+        if !seen && !onto_rest {
             unique.push(t);
         }
     }

@@ -10,14 +10,16 @@ use crate::orbit::structure::Structure;
 use super::SweepOptions;
 
 /// The name a transition's `to` gives what the simulation found:
-/// `P_{...}` (with `^N` for N > 1 forcing periods), `NM`, `stick`,
-/// `autonomous`, `unsettled` or `invalid`.
+/// `P_{...}` (with `^N` for N > 1 forcing periods; an autonomous cycle's
+/// structure), `NM`, `stick`, `unsettled` or `invalid`.
 pub(super) fn name(info: &ModelInfo, found: &Result<Attractor, OrbitError>) -> String {
     match found {
         Ok(Attractor::Periodic(m)) => motion_name(info, m),
         Ok(Attractor::NoMotion(_)) => "NM".into(),
         Ok(Attractor::Stick(_)) => "stick".into(),
-        Ok(Attractor::Autonomous(_)) => "autonomous".into(),
+        Ok(Attractor::Autonomous(c)) => c
+            .motion(info)
+            .map_or_else(|| "autonomous".into(), |m| motion_name(info, &m)),
         Err(OrbitError::Params(_)) | Err(OrbitError::Simulation(_)) => "invalid".into(),
         Err(_) => "unsettled".into(),
     }
