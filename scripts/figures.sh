@@ -50,6 +50,11 @@ figure sweep_shaw.png s sweep --model coulomb --param W=0.33:0.42:10 \
     --set V=0,d=0,mus=0.45,muk=0.3,Q0=1.5 --plot "$out/sweep_shaw.png"
 figure sweep_ns.png s sweep --model paper --param W=10.3:11.3:51 --set Q0=100,mu3=4.4 --plot "$out/sweep_ns.png"
 figure sweep_kinds.png s sweep --model paper --param W=9.2:11.3:43 --set Q0=80,mu3=4.4 --plot "$out/sweep_kinds.png"
+# Self-excited oscillations: the belt's cycles and steady sliding, and their basins.
+figure belt_frc.png s sweep --model-file examples/belt.ssm --scene pl16 --param vd=0.2:3:29 \
+    --view frc --plot "$out/belt_frc.png"
+figure belt_basins.png s basins --model-file examples/belt.ssm --scene pl16 --set vd=1.4 \
+    --x x=-1.5:2.5:161 --y v=-1:3:161 --out "$tmp/belt_basins.csv" --plot "$out/belt_basins.png"
 # Smooth friction: the measured trade.
 figure trade_stribeck.png s trade --model stribeck --plot "$out/trade_stribeck.png"
 if [[ -n "$quick" ]]; then

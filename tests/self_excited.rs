@@ -6,6 +6,8 @@
 //! equilibrium sits on a breakpoint, and the Coulomb belt oscillator's
 //! stick-slip cycle against its closed form.
 
+mod common;
+
 use std::path::PathBuf;
 
 use nalgebra::Matrix2;
@@ -336,39 +338,215 @@ fn simulate_names_steady_sliding() {
 struct Swept;
 
 impl ModelVisitor for Swept {
-    type Output = (Vec<stickslip::study::sweep::Transition>, Scan);
+    type Output = (stickslip::study::sweep::Sweep, Scan);
     fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
         let s = stickslip::study::sweep::sweep::<M>(base, "vd", 0.2, 3.0, 15, Default::default())
             .expect("sweep");
-        Some((
-            s.transitions,
-            scan::<M>(base, "vd", 0.2, 3.0, 15).expect("scan"),
-        ))
+        Some((s, scan::<M>(base, "vd", 0.2, 3.0, 15).expect("scan")))
     }
+}
+
+/// Whether the structure `P_{…}` has the stick mapping `0_11`.
+fn sticks(structure: &str) -> bool {
+    structure.split([' ', '{', '}']).any(|name| name == "0_11")
+}
+
+fn swept(scene: &str) -> (stickslip::study::sweep::Sweep, Scan) {
+    ModelRef::File {
+        path: belt(),
+        scene: Some(scene.to_string()),
+    }
+    .visit(Swept)
+    .expect("loads")
+    .expect("piecewise")
 }
 
 /// `sweep` on an unforced model: the equilibrium moving from band to band
 /// is no grazing; its one loss of stability is a steady-sliding transition
-/// at the value `equilibria` locates, into the stick-slip cycle.
+/// at the value `equilibria` locates, into the stick-slip cycle; the
+/// unstable cycle that shrinks onto the equilibrium there is that same
+/// transition, not a second one. Every other transition is a cycle's.
 #[test]
 fn a_sweep_of_an_unforced_model_has_no_false_grazing() {
+    use stickslip::bifurcation::TransitionKind;
     for scene in ["pl16", "pl64"] {
-        let (transitions, s) = ModelRef::File {
-            path: belt(),
-            scene: Some(scene.to_string()),
-        }
-        .visit(Swept)
-        .expect("loads")
-        .expect("piecewise");
-        assert_eq!(transitions.len(), 1, "{scene}: {transitions:?}");
-        let t = &transitions[0];
-        assert_eq!(
-            t.kind,
-            stickslip::bifurcation::TransitionKind::SteadySliding
-        );
+        let (sweep, s) = swept(scene);
+        let rest: Vec<_> = sweep
+            .transitions
+            .iter()
+            .filter(|t| t.kind == TransitionKind::SteadySliding)
+            .collect();
+        assert_eq!(rest.len(), 1, "{scene}: {:?}", sweep.transitions);
+        let t = rest[0];
         assert_eq!(t.value, s.changes[0].change.at, "{scene}");
-        assert_eq!(t.to, "autonomous", "{scene}: {t:?}");
+        assert!(t.to.starts_with("P_{") && sticks(&t.to), "{scene}: {t:?}");
+        for u in &sweep.transitions {
+            assert!(u.from.starts_with("P_{") || u == t, "{scene}: {u:?}");
+            assert!(
+                u == t || (u.value - t.value).abs() > 1e-8,
+                "{scene}: {u:?} at the steady-sliding change"
+            );
+        }
     }
+}
+
+/// What the reference integrator (`tests/common/events.rs`, Dormand–Prince
+/// with its own event location, nothing of the closed forms) does from
+/// `(x0, v0)` in `domain` over `time`: the events and the final state.
+fn integrate<M: Model>(
+    p: &M::Params,
+    x0: f64,
+    v0: f64,
+    domain: Option<usize>,
+    time: f64,
+) -> (Vec<common::events::RefEvent>, [f64; 2]) {
+    let ode = common::events::PiecewiseOde::of::<M>(p);
+    let (events, y, _) = ode.integrate_to(0.0, x0, v0, domain, time, 1e-12);
+    (events, y)
+}
+
+/// The belt's sweep follows its cycles, stable and unstable, and the fold
+/// between them, against the reference integrator:
+/// * the stable stick-slip cycle dies where its stick vanishes, on the
+///   unstable slip cycle (a non-smooth fold of cycles): on one side of it a
+///   simulation from the cycle keeps sticking, on the other it comes to
+///   rest;
+/// * the unstable slip cycle at a grid value separates the two: from a
+///   hair inside it the motion decays to steady sliding, from a hair
+///   outside it sticks;
+/// * its Floquet multiplier is the derivative of the integrator's return
+///   map on the boundary its first point lies on (central differences),
+///   and its period the integrator's return time.
+#[test]
+fn a_sweep_follows_the_cycles_and_the_fold_between_them() {
+    use stickslip::bifurcation::TransitionKind;
+    use stickslip::dynamics::simulate::EventKind;
+    use stickslip::orbit::structure::Structure;
+    let (sweep, _) = swept("pl16");
+    let vanishing: Vec<_> = sweep
+        .transitions
+        .iter()
+        .filter(|t| t.kind == TransitionKind::StickVanishing)
+        .collect();
+    assert_eq!(vanishing.len(), 1, "{:?}", sweep.transitions);
+    let fold = vanishing[0].value;
+    // The slip cycle (no stick) ends there too, and is unstable.
+    let slip = sweep
+        .branches
+        .iter()
+        .find(|b| {
+            !sticks(&b.structure) && b.ends.iter().any(|e| (e.value - fold).abs() <= 1e-9 * fold)
+        })
+        .unwrap_or_else(|| {
+            let ends: Vec<_> = sweep
+                .branches
+                .iter()
+                .map(|b| (&b.structure, &b.ends))
+                .collect();
+            panic!("no slip cycle ends at the fold {fold}: {ends:?}")
+        });
+    assert!(slip.points.iter().all(|q| !q.stable), "{slip:?}");
+    assert!(slip.points.iter().all(|q| q.value <= fold + 1e-9));
+    // An unstable slip cycle at a grid value of the bistable window.
+    let at = sweep
+        .points
+        .iter()
+        .find_map(|g| {
+            let m = g
+                .motions
+                .iter()
+                .find(|m| !m.stable && !sticks(&m.structure))?;
+            Some((g.value, m.clone()))
+        })
+        .expect("an unstable slip cycle at a grid value");
+
+    struct Check {
+        fold: f64,
+        value: f64,
+        motion: stickslip::study::sweep::MotionSummary,
+        stick_x: f64,
+    }
+    impl ModelVisitor for Check {
+        type Output = ();
+        fn piecewise<M: Model>(self, base: M::Params) -> Option<()> {
+            let id = M::identity(&base);
+            let at = |vd: f64| base.with_pairs(id, &[("vd", vd)]).expect("params");
+            let info = M::info(&base);
+            // Both sides of the fold, from the stick onset of the cycle there.
+            for (side, sticks) in [(-1e-3, true), (1e-3, false)] {
+                let vd = self.fold + side;
+                let p = at(vd);
+                let rest = steady_sliding::<M>(&p).expect("steady sliding").x;
+                let (events, y) = integrate::<M>(&p, self.stick_x, vd, None, 400.0);
+                let late = events
+                    .iter()
+                    .filter(|e| e.phase > 300.0 * M::oscillator(&p).frequency)
+                    .any(|e| e.kind == EventKind::StickOnset);
+                assert_eq!(late, sticks, "vd = {vd}: {} events", events.len());
+                if !sticks {
+                    assert!((y[0] - rest).abs() < 1e-3 && y[1].abs() < 1e-3, "{y:?}");
+                }
+            }
+            // The unstable slip cycle: its first point on the boundary of its
+            // first mapping, entering that mapping's domain.
+            let p = at(self.value);
+            let w = M::oscillator(&p).frequency;
+            let structure = Structure::parse(info, &self.motion.structure, 1).expect("structure");
+            let first = info.mappings[structure.steps()[0]];
+            let (b, domain) = (first.from, first.domain);
+            let vb = M::boundary_velocity(&p, b);
+            let rest = steady_sliding::<M>(&p).expect("steady sliding").x;
+            let x0 = self.motion.start_x;
+            for (scale, sticks) in [(0.99, false), (1.01, true)] {
+                let x = rest + scale * (x0 - rest);
+                let (events, _) = integrate::<M>(&p, x, vb, domain, 600.0);
+                let stuck = events.iter().any(|e| e.kind == EventKind::StickOnset);
+                assert_eq!(stuck, sticks, "from {scale} of the cycle");
+            }
+            // Return map on boundary b: the second crossing of b after the start.
+            let period = self.motion.period.expect("a period");
+            let back = |x: f64| {
+                let (events, _) = integrate::<M>(&p, x, vb, domain, 1.5 * period);
+                let e = events
+                    .iter()
+                    .filter(|e| e.boundary == b && e.kind == EventKind::Pass)
+                    .nth(1)
+                    .copied()
+                    .expect("returns");
+                (e.x, e.phase / w)
+            };
+            let (x1, t1) = back(x0);
+            assert!((x1 - x0).abs() <= 1e-9 * x0.abs().max(1.0), "{x1} vs {x0}");
+            assert!((t1 - period).abs() <= 1e-9 * period, "{t1} vs {period}");
+            let h = 1e-5 * (x0 - rest).abs();
+            let mu = (back(x0 + h).0 - back(x0 - h).0) / (2.0 * h);
+            let reported = self.motion.eigenvalues[0][0];
+            assert!(mu > 1.0, "unstable: {mu}");
+            assert!((reported - mu).abs() <= 1e-6 * mu, "{reported} vs {mu}");
+            Some(())
+        }
+    }
+    // The stick onset of the stick-slip cycle at the grid value below the fold.
+    let stick_x = sweep
+        .points
+        .iter()
+        .rev()
+        .find(|g| g.value < fold)
+        .and_then(|g| g.motions.iter().find(|m| sticks(&m.structure)))
+        .expect("the stick-slip cycle below the fold")
+        .start_x;
+    ModelRef::File {
+        path: belt(),
+        scene: Some("pl16".to_string()),
+    }
+    .visit(Check {
+        fold,
+        value: at.0,
+        motion: at.1,
+        stick_x,
+    })
+    .expect("loads")
+    .expect("piecewise");
 }
 
 /// Forced and self-excited together: a weak forcing on the belt oscillator's
@@ -546,85 +724,4 @@ fn equilibria_refuses_bad_input_with_a_message() {
         text.contains("no steady sliding") && text.contains("Q0=0"),
         "{text}"
     );
-}
-
-#[test]
-fn explore_cycle_branch() {
-    use stickslip::bifurcation::{follow, ContinuationOptions, Start};
-    use stickslip::orbit::structure::Structure;
-    struct Follow;
-    impl ModelVisitor for Follow {
-        type Output = ();
-        fn piecewise<M: Model>(self, base: M::Params) -> Option<()> {
-            let id = M::identity(&base);
-            let p = base.with_pairs(id, &[("vd", 0.5)]).expect("params");
-            let sim = Simulator::<M>::new(p, SimOptions::default()).expect("params");
-            let v = M::boundary_velocity(&p, 0);
-            let start = sim.start(0.0, v, 0.0).expect("start");
-            let Attractor::Autonomous(cycle) =
-                attractor::find(&sim, start, AttractorOptions::default()).expect("settles")
-            else {
-                panic!("a cycle")
-            };
-            let structure = Structure::autonomous(M::info(&p), &cycle.steps).expect("structure");
-            let m = cycle.points.len();
-            for k in 0..m {
-                let a = cycle.points[k];
-                let b = if k + 1 < m {
-                    cycle.points[k + 1]
-                } else {
-                    stickslip::orbit::periodic::SwitchingPoint {
-                        x: cycle.points[0].x,
-                        phase: 0.0,
-                    }
-                };
-                let e = M::mapping(&p, cycle.steps[k], a.x, a.phase, b.x, b.phase);
-                let pp = p.with_pairs(id, &[("vd", 0.5 + 1e-6)]).unwrap();
-                let fp = M::residual(&pp, cycle.steps[k], a.x, a.phase, b.x, b.phase);
-                eprintln!(
-                    "{k} {} res {:?} fp {:?}",
-                    M::info(&p).mappings[cycle.steps[k]].name,
-                    e.residual,
-                    fp
-                );
-            }
-            let index = p.index_of("vd").expect("vd");
-            let opts = ContinuationOptions {
-                bounds: (0.2, 3.0),
-                ..ContinuationOptions::default()
-            };
-            let b = follow::<M>(
-                &p,
-                index,
-                &Start {
-                    structure,
-                    value: 0.5,
-                    points: cycle.points.clone(),
-                    direction: None,
-                },
-                &opts,
-            )
-            .expect("follows");
-            for e in &b.ends {
-                eprintln!(
-                    "end {:?} at {} mu {:?} T {}",
-                    e.reason, e.at.value, e.at.stability, -e.at.points[0].phase
-                );
-            }
-            eprintln!(
-                "{} points; bifs {:?}",
-                b.points.len(),
-                b.bifurcations
-                    .iter()
-                    .map(|x| (x.kind, x.at.value))
-                    .collect::<Vec<_>>()
-            );
-            Some(())
-        }
-    }
-    let model = ModelRef::File {
-        path: belt(),
-        scene: Some("pl16".into()),
-    };
-    model.visit(Follow).expect("loads");
 }

@@ -11,7 +11,7 @@ basins of friction oscillators, computed in process by the Rust library.
 from __future__ import annotations
 
 from ._model import Model, Param, check, models
-from ._results import Description, History, Motion, OrbitDiagram, Result, Sweep
+from ._results import Description, Equilibria, History, Motion, OrbitDiagram, Result, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import (
     InadmissibleError,
@@ -36,6 +36,7 @@ __all__ = [
     "History",
     "Description",
     "Sweep",
+    "Equilibria",
     "OrbitDiagram",
     "Map",
     "Curves",

@@ -13,7 +13,7 @@ from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _native
-from ._results import Description, Motion, OrbitDiagram, Sweep
+from ._results import Description, Equilibria, Motion, OrbitDiagram, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import InadmissibleError, InputError, NewtonError
 
@@ -186,6 +186,25 @@ class Model:
             max_mappings, max_period,
         )
         return Sweep(json.loads(data))
+
+    def equilibria(
+        self,
+        along: Optional[Tuple[str, Number, Number, int]] = None,
+        **fixed: Number,
+    ) -> Equilibria:
+        """Steady sliding of the unforced model (the forcing amplitude must
+        be 0), its exact eigenvalues and stability (``stickslip
+        equilibria``): at the parameters ``fixed``, or along ``along = (name,
+        from, to, count)`` with every change of stability located (the Hopf
+        point of a smooth law, the breakpoint of a piecewise one). A model
+        with a smooth law is taken as the law itself."""
+        rng = None
+        if along is not None:
+            if len(along) != 4:
+                raise InputError(f"along: expected (name, from, to, count), got {along!r}")
+            rng = (str(along[0]), float(along[1]), float(along[2]), int(along[3]))
+        data = _native.equilibria(self._spec, _pairs(fixed), rng)
+        return Equilibria(json.loads(data))
 
     def orbit_diagram(
         self,

@@ -91,6 +91,11 @@ def curves(
     max_partners: Optional[int] = None,
     edges: bool = True,
 ) -> str: ...
+def equilibria(
+    model: ModelSpec,
+    set: Pairs,
+    range: Optional[Tuple[str, float, float, int]] = None,
+) -> str: ...
 def lyapunov(
     model: ModelSpec,
     set: Pairs,

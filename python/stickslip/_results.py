@@ -197,6 +197,45 @@ class Description(Result):
         p.text(self._text)
 
 
+class Equilibria(Result):
+    """Steady sliding of an unforced model (``stickslip equilibria --json``):
+    ``model``, ``param``, ``points`` (at each value: ``equilibrium`` with
+    ``x``, ``eigenvalues``, ``verdict`` and ``margin``, its ``seat``, or why
+    there is ``none``) and ``changes`` (every change of stability between
+    grid values, located: ``at``, ``before``, ``after``, ``loss``, ``what``); ``values``
+    and ``x`` (``nan`` where there is no equilibrium) as numpy arrays."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        super().__init__(data)
+        self.model: str = data["model"]
+        self.param: str = data["param"]
+        self.points: List[Dict[str, Any]] = data["points"]
+        self.changes: List[Dict[str, Any]] = data["changes"]
+        self.values = np.array([p["value"] for p in self.points], dtype=float)
+        self.x = np.array(
+            [p["equilibrium"]["x"] if p.get("equilibrium") else np.nan for p in self.points],
+            dtype=float,
+        )
+
+    def to_pandas(self) -> Any:
+        """One row per value: ``value``, ``x``, ``verdict``, ``margin``,
+        ``seat``, ``none`` (why there is no equilibrium; NaN values there)."""
+        rows = []
+        for p in self.points:
+            e = p.get("equilibrium") or {}
+            rows.append(
+                {
+                    "value": p["value"],
+                    "x": e.get("x", np.nan),
+                    "verdict": e.get("verdict"),
+                    "margin": e.get("margin", np.nan),
+                    "seat": p.get("seat"),
+                    "none": p.get("none"),
+                }
+            )
+        return _pandas().DataFrame(rows)
+
+
 class Sweep(Result):
     """A sweep of one parameter (``stickslip sweep --json``): ``param``, the
     grid ``values``, ``points`` (the motions at each value), ``branches``

@@ -246,3 +246,23 @@ def test_unforced_motions_carry_their_stability():
     assert rest.kind == "NM" and rest.stable is True
     assert abs(rest.steady_sliding["x"] - 0.3) < 1e-15
     assert rest.steady_sliding["verdict"] == "stable"
+
+
+def test_equilibria_of_a_smooth_law_locate_its_hopf_point():
+    """Steady sliding of the Stribeck law itself (no pieces) loses stability
+    where 2 d + f'(0) = 0: V* = -vs ln((2 d + sigma) vs / ((mus - muk) g))."""
+    import math
+
+    law = stickslip.Model("stribeck")
+    scan = law.equilibria(along=("V", 0.2, 3.0, 15), Q0=0)
+    p = {k: v.default for k, v in law.params.items()}
+    closed = -p["vs"] * math.log((2 * p["d"] + p["sigma"]) * p["vs"] / ((p["mus"] - p["muk"]) * p["g"]))
+    assert len(scan.changes) == 1
+    assert abs(scan.changes[0]["at"] - closed) <= 1e-9 * closed
+    assert scan.values.shape == (15,) and np.all(np.isfinite(scan.x))
+    one = law.equilibria(Q0=0, V=2.0)
+    assert one.points[0]["equilibrium"]["verdict"] == "stable"
+    forced = law.equilibria(V=2.0)
+    assert forced.points[0]["equilibrium"] is None and "forc" in forced.points[0]["none"]
+    with pytest.raises(stickslip.InputError):
+        law.equilibria(along=("V", 0.2, 3.0, 0), Q0=0)

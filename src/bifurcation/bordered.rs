@@ -174,7 +174,14 @@ impl<M: Model> Bordered<M> {
 
     #[inline]
     fn ends(&self, points: &[SwitchingPoint], k: usize) -> (SwitchingPoint, SwitchingPoint) {
-        (points[k], arrival(points, k, self.structure.shift(points)))
+        (
+            points[k],
+            arrival(
+                points,
+                k,
+                crate::orbit::periodic::cycle_shift(&self.structure, points),
+            ),
+        )
     }
 
     /// The scaled inner product's weight of component `(x, W t)`.
@@ -451,7 +458,7 @@ impl<M: Model> Bordered<M> {
     /// eigenvalue 1 along the flow replaced by 0).
     pub fn poincare_jacobian(&self, x: &State) -> Result<Matrix2<f64>, usize> {
         let p = self.params(x.value);
-        let shift = self.structure.shift(&x.points);
+        let shift = crate::orbit::periodic::cycle_shift(&self.structure, &x.points);
         let dp = monodromy::<M>(&p, self.structure.steps(), shift, &x.points)?;
         if self.structure.is_autonomous() {
             return Ok(Matrix2::new(0.0, 0.0, 0.0, dp.trace() - 1.0));

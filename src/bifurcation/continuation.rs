@@ -677,14 +677,11 @@ pub fn follow<M: Model>(
     let mut p = *base;
     p.set(index, start.value);
     p.check()?;
-    if start.structure.is_autonomous() {
-        let forcing = M::oscillator(&p).amplitude;
-        if forcing != 0.0 || !(start.points[0].phase < 0.0) {
-            return Err(ContinuationError::Start(format!(
-                "an autonomous cycle needs the forcing off (A0 = {forcing}) and its return held at W t = 0 (first phase {} must be −W T < 0)",
-                start.points[0].phase
-            )));
-        }
+    let held = M::oscillator(&p).amplitude == 0.0 && start.points[0].phase < 0.0;
+    if start.structure.is_autonomous() && !held {
+        return Err(ContinuationError::Start(
+            "an autonomous cycle needs the forcing off and its return held at W t = 0".into(),
+        ));
     }
     let mut sys = system::<M>(
         base,
@@ -698,8 +695,7 @@ pub fn follow<M: Model>(
         points: start.points.clone(),
         value: start.value,
     };
-    // Phase origin: 0 <= W t_0 < 2π; an autonomous cycle is given with its
-    // return at 0 (`Structure::shift`).
+    // Phase origin: 0 <= W t_0 < 2π (an autonomous cycle keeps its return at 0).
     let origin = if start.structure.is_autonomous() {
         0.0
     } else {

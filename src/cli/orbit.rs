@@ -31,7 +31,8 @@ pub struct OrbitArgs {
     #[arg(long, value_delimiter = ',')]
     set: Vec<String>,
     /// Forcing periods per cycle (the period N of the motion); by default
-    /// 1, or `k` for a repeated block `(P_{…})^{×k}`.
+    /// 1, or `k` for a repeated block `(P_{…})^{×k}`. With the forcing off
+    /// (amplitude 0) the period is an unknown and this is ignored.
     #[arg(long)]
     periods: Option<u32>,
     /// The first switching point `W t,x` (the start of the first mapping
@@ -78,13 +79,16 @@ impl WithModel for Orbit {
         let p = self.set.params::<M>(base)?;
         let info = M::info(&p);
         let sim = Simulator::<M>::new(p, SimOptions::default())?;
-        let structure =
-            Structure::parse(info, &self.structure, self.periods).map_err(|source| {
-                CliError::Structure {
-                    text: self.structure.clone(),
-                    source,
-                }
-            })?;
+        let parse_error = |source| CliError::Structure {
+            text: self.structure.clone(),
+            source,
+        };
+        let mut structure =
+            Structure::parse(info, &self.structure, self.periods.max(1)).map_err(parse_error)?;
+        // Unforced: a cycle whose period is an unknown (SPEC §14).
+        if M::oscillator(&p).amplitude == 0.0 {
+            structure = Structure::autonomous(info, structure.steps()).map_err(parse_error)?;
+        }
         let mut outcome = Outcome::ok(String::new());
         let from_guess = match self.guess {
             None => None,
@@ -106,13 +110,24 @@ impl WithModel for Orbit {
         };
         let motion = motion::solve(&sim, structure, points, NewtonOptions::default());
         let report = Report::of_motion(&sim, &motion);
-        let title = format!(
-            "{}: {}, N = {} ({})",
-            info.name,
-            motion.structure.notation(info),
-            motion.structure.periods(),
-            self.set
-        );
+        let title = if motion.structure.is_autonomous() {
+            format!(
+                "{}: {}, T = {:.6} ({})",
+                info.name,
+                motion.structure.notation(info),
+                stickslip::orbit::periodic::cycle_shift(&motion.structure, &motion.points)
+                    / M::oscillator(&p).frequency,
+                self.set
+            )
+        } else {
+            format!(
+                "{}: {}, N = {} ({})",
+                info.name,
+                motion.structure.notation(info),
+                motion.structure.periods(),
+                self.set
+            )
+        };
         outcome.with_report(
             &report,
             || Ok(History::of_motion(&sim, &motion, SAMPLES_PER_PERIOD)),

@@ -51,7 +51,7 @@ pub fn of_motion<M: Model>(
     structure: &Structure,
     points: &[SwitchingPoint],
 ) -> Option<Amplitude> {
-    let shift = structure.shift(points);
+    let shift = crate::orbit::periodic::cycle_shift(structure, points);
     of_cycle::<M>(p, structure.steps(), shift, points)
 }
 

@@ -154,7 +154,7 @@ pub fn shrinking(
     if points.len() != m || m < 3 {
         return None;
     }
-    let shift = structure.shift(points);
+    let shift = crate::orbit::periodic::cycle_shift(structure, points);
     let duration =
         |k: usize| crate::orbit::periodic::arrival(points, k, shift).phase - points[k].phase;
     (0..m)
@@ -210,7 +210,7 @@ pub fn without(
         .iter()
         .map(|&i| if i == before { merged } else { steps[i] })
         .collect();
-    let shift = structure.shift(points);
+    let shift = crate::orbit::periodic::cycle_shift(structure, points);
     let structure = Structure::autonomous(info, &applied).ok()?;
     // Phases past the old return come one period later; the new return is
     // a period after the new first point.

@@ -114,8 +114,15 @@ pub fn points_from_guess<M: Model>(
         location,
         search_from: phase,
     };
-    let limit = phase + TAU * (2 * structure.periods() + 1) as f64;
+    // An autonomous cycle's period is not known in forcing periods: its
+    // mappings may take any time.
+    let limit = if structure.is_autonomous() {
+        phase + TAU * AUTONOMOUS_PERIODS
+    } else {
+        phase + TAU * (2 * structure.periods() + 1) as f64
+    };
     let mut points = vec![SwitchingPoint { phase, x }];
+    let mut back = phase;
     let mut k = 0;
     while k < m {
         let mi = &info.mappings[steps[k]];
@@ -146,7 +153,18 @@ pub fn points_from_guess<M: Model>(
                 x: event.x,
             });
         }
+        back = event.phase;
         k += 1;
+    }
+    if structure.is_autonomous() {
+        // Held with the return at W t = 0 (`Structure::shift`).
+        for q in &mut points {
+            q.phase -= back;
+        }
     }
     Ok(points)
 }
+
+/// How many units of `W t / 2π` the flow from an autonomous cycle's guess
+/// may take to follow its structure once.
+const AUTONOMOUS_PERIODS: f64 = 1000.0;

@@ -40,6 +40,13 @@ pub fn arrival(points: &[SwitchingPoint], k: usize, shift: f64) -> SwitchingPoin
     }
 }
 
+/// The phase from the first of `points` to the return of the cycle of
+/// `structure` to it ([`Structure::shift`]): `2π N`, or an autonomous
+/// cycle's `W T`.
+pub fn cycle_shift(structure: &Structure, points: &[SwitchingPoint]) -> f64 {
+    structure.shift(points.first().map_or(f64::NAN, |q| q.phase))
+}
+
 /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` of the cycle of
 /// mappings `steps` at `points`, ordered `(W t, x)` (SPEC §7, Eq. B.1), or
 /// the index of the first mapping whose arrival is tangent to its boundary.
@@ -291,7 +298,7 @@ impl<M: Model> PeriodicSolver<M> {
     /// The point after point `k` (wrapping with the period shift).
     #[inline]
     fn next(&self, points: &[SwitchingPoint], k: usize) -> SwitchingPoint {
-        arrival(points, k, self.structure.shift(points))
+        arrival(points, k, cycle_shift(&self.structure, points))
     }
 
     /// Mapping `k` evaluated at the current points.
@@ -651,7 +658,7 @@ impl<M: Model> PeriodicSolver<M> {
         monodromy::<M>(
             p,
             self.structure.steps(),
-            self.structure.shift(points),
+            cycle_shift(&self.structure, points),
             points,
         )
         .map(|dp| self.reduced(dp))

@@ -5,7 +5,6 @@
 use stickslip_codegen::structure as grammar;
 
 use crate::model::{MappingKind, ModelInfo, Side};
-use crate::orbit::periodic::SwitchingPoint;
 
 /// Why a structure was rejected (the grammar and its errors are shared with
 /// the model checker: `stickslip_codegen::structure`).
@@ -97,12 +96,12 @@ impl Structure {
         self.periods == 0
     }
 
-    /// The phase `W t` from the first switching point to the cycle's return
-    /// to it: `2π N`, or for an autonomous cycle (held with its return at
-    /// `W t = 0`) `−W t_0`.
-    pub fn shift(&self, points: &[SwitchingPoint]) -> f64 {
+    /// The phase `W t` from the first switching point (at phase `first`)
+    /// to the cycle's return to it: `2π N`, or for an autonomous cycle (held
+    /// with its return at `W t = 0`) `−first`.
+    pub fn shift(&self, first: f64) -> f64 {
         if self.is_autonomous() {
-            points.first().map_or(f64::NAN, |q| -q.phase)
+            -first
         } else {
             std::f64::consts::TAU * self.periods as f64
         }

@@ -85,9 +85,12 @@ pub enum Report {
 pub struct MotionReport {
     /// `P_{σm … σ1}`.
     pub structure: String,
-    /// Forcing periods per cycle.
+    /// Forcing periods per cycle (0: an autonomous cycle).
     #[serde(rename = "N")]
     pub periods: u32,
+    /// An autonomous cycle's period `T` (a time).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
     /// The model's free parameters.
     pub params: ParamValues,
     /// Point `k` is the start of the `k`-th mapping applied.
@@ -341,6 +344,10 @@ impl Report {
         let report = MotionReport {
             structure,
             periods: motion.structure.periods(),
+            period: motion.structure.is_autonomous().then(|| {
+                crate::orbit::periodic::cycle_shift(&motion.structure, &motion.points)
+                    / M::oscillator(p).frequency
+            }),
             params: ParamValues::of(p),
             points,
             eigenvalues: motion.stability.map(|s| s.eigenvalues),

@@ -43,18 +43,25 @@ fn number(x: f64) -> String {
 }
 
 fn write_motion(f: &mut fmt::Formatter<'_>, r: &MotionReport) -> fmt::Result {
-    writeln!(
-        f,
-        "{}: {}, period N = {} (model {})",
-        if r.admissible {
-            "periodic motion"
-        } else {
-            "NOT A MOTION (inadmissible Newton solution)"
-        },
-        r.structure,
-        r.periods,
-        r.model
-    )?;
+    let what = if !r.admissible {
+        "NOT A MOTION (inadmissible Newton solution)"
+    } else if r.period.is_some() {
+        "autonomous cycle"
+    } else {
+        "periodic motion"
+    };
+    match r.period {
+        Some(t) => writeln!(
+            f,
+            "{what}: {}, period T = {t:.12} (no forcing: W only sets the phase unit; model {})",
+            r.structure, r.model
+        )?,
+        None => writeln!(
+            f,
+            "{what}: {}, period N = {} (model {})",
+            r.structure, r.periods, r.model
+        )?,
+    }
     writeln!(f, "parameters: {}", r.params)?;
     writeln!(
         f,
@@ -82,7 +89,14 @@ fn write_motion(f: &mut fmt::Formatter<'_>, r: &MotionReport) -> fmt::Result {
     writeln!(f)?;
     match &r.stability {
         Some(s) => {
-            writeln!(f, "eigenvalues of DP (in (W t, x)):")?;
+            if r.period.is_some() {
+                writeln!(
+                    f,
+                    "Floquet multipliers (the trivial 1 along the flow replaced by 0):"
+                )?;
+            } else {
+                writeln!(f, "eigenvalues of DP (in (W t, x)):")?;
+            }
             for (i, e) in s.eigenvalues.iter().enumerate() {
                 let value = if e[1] == 0.0 {
                     number(e[0])
@@ -104,7 +118,7 @@ fn write_motion(f: &mut fmt::Formatter<'_>, r: &MotionReport) -> fmt::Result {
                 classification_text(s),
                 s.largest_modulus
             )?;
-            if s.has_zero_eigenvalue {
+            if s.has_zero_eigenvalue && r.period.is_none() {
                 write!(f, "; one eigenvalue is 0 to round-off (stick)")?;
             }
             writeln!(f)?;

@@ -1,8 +1,10 @@
 //! The analyses over parameters and starts, each returning the CLI's JSON:
-//! `sweep` (here), [`map`], [`curves`], [`lyapunov`], [`basins`].
+//! `sweep` (here), [`map`], [`curves`], [`lyapunov`], [`basins`],
+//! [`equilibria`].
 
 mod basins;
 mod curves;
+mod equilibria;
 mod lyapunov;
 mod map;
 
@@ -22,6 +24,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(curves::curves, m)?)?;
     m.add_function(wrap_pyfunction!(lyapunov::lyapunov, m)?)?;
     m.add_function(wrap_pyfunction!(basins::basins, m)?)?;
+    m.add_function(wrap_pyfunction!(equilibria::equilibria, m)?)?;
     Ok(())
 }
 

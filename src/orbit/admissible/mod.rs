@@ -350,7 +350,7 @@ fn walk<M: Model>(
     let info = sim.info();
     let p = sim.params();
     let m = points.len();
-    let shift = structure.shift(points);
+    let shift = crate::orbit::periodic::cycle_shift(structure, points);
     let label = |k: usize| info.boundaries[k].label;
     // Each margin as a smooth function of the points: no event search.
     let smooth = out.smooth();

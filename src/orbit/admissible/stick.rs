@@ -119,7 +119,7 @@ fn stick_ends(
     if mi.kind != MappingKind::Stick || points.len() != structure.len() {
         return None;
     }
-    let shift = structure.shift(points);
+    let shift = crate::orbit::periodic::cycle_shift(structure, points);
     Some((mi.from, points[segment], arrival(points, segment, shift)))
 }
 

@@ -28,8 +28,15 @@ fn fixed_colour(name: &str) -> Option<RGBColor> {
     match name {
         "NM" => Some(RGBColor(236, 236, 228)),
         "stick" => Some(RGBColor(90, 90, 90)),
-        "chaotic" | "quasi-periodic" | "autonomous cycle" => None,
-        _ if name.starts_with("P_") || name.starts_with("cycle longer") => None,
+        "chaotic" | "quasi-periodic" => None,
+        _ if name.starts_with("P_")
+            || name.starts_with("cycle longer")
+            || name.starts_with("stick-slip cycle")
+            || name.starts_with("slip cycle")
+            || name.starts_with("autonomous") =>
+        {
+            None
+        }
         _ => Some(RGBColor(160, 160, 160)),
     }
 }

@@ -148,7 +148,13 @@ pub fn attractor_label(info: &ModelInfo, a: &Attractor) -> String {
         Attractor::Periodic(m) => motion_label(info, m),
         Attractor::NoMotion(_) => NO_MOTION.to_string(),
         Attractor::Stick(_) => STICK.to_string(),
-        Attractor::Autonomous(_) => "autonomous cycle".to_string(),
+        Attractor::Autonomous(c) => {
+            let kind = if c.stick > 0.0 { "stick-slip" } else { "slip" };
+            c.motion(info).map_or_else(
+                || format!("autonomous {kind} cycle"),
+                |m| format!("{kind} cycle {}", motion_label(info, &m)),
+            )
+        }
     }
 }
 

@@ -421,7 +421,7 @@ impl MotionSummary {
 /// The period `T` of an autonomous cycle (`None` for a forced motion).
 fn period_of<M: Model>(p: &M::Params, s: &Structure, points: &[SwitchingPoint]) -> Option<f64> {
     s.is_autonomous()
-        .then(|| s.shift(points) / M::oscillator(p).frequency)
+        .then(|| crate::orbit::periodic::cycle_shift(s, points) / M::oscillator(p).frequency)
 }
 
 fn sample(
@@ -688,6 +688,7 @@ fn sweep_grid<M: Model>(
     // One transition found from both sides (or from two branches) is listed
     // once, whatever else lies at the same value: mirror-image motions put
     // theirs there too, so equal transitions need not be adjacent.
+    let unforced = M::oscillator(&base).amplitude == 0.0;
     let rests: Vec<f64> = transitions
         .iter()
         .filter(|u| u.kind == TransitionKind::SteadySliding)
@@ -697,10 +698,15 @@ fn sweep_grid<M: Model>(
     for t in transitions {
         let near = |u: &Transition| (u.value - t.value).abs() < 1e-8 * t.value.abs().max(1.0);
         let same = |u: &Transition| near(u) && u.kind == t.kind && u.boundary == t.boundary;
-        // A change of structure met from both of its sides (A -> B, and B's
-        // own end at that value) is one transition too: the first kept,
-        // unless only the second names the structure on the other side.
-        if let Some(u) = unique.iter_mut().find(|u| same(u) && u.from == t.to) {
+        // Of an unforced model, whose unstable cycles are followed past
+        // their excursions, a change of structure met from both of its
+        // sides (A -> B, and B's own end at that value) is one transition
+        // too: the first kept, unless only the second names the structure
+        // on the other side.
+        if let Some(u) = unique
+            .iter_mut()
+            .find(|u| unforced && same(u) && u.from == t.to)
+        {
             if !u.to.starts_with('P') && !u.to.starts_with('(') {
                 *u = t;
             }
@@ -714,7 +720,7 @@ fn sweep_grid<M: Model>(
                 .any(|r| (r - t.value).abs() < 1e-8 * t.value.abs().max(1.0));
         let seen = unique
             .iter()
-            .any(|u| same(u) && (u.from == t.from || u.to == t.from));
+            .any(|u| same(u) && (u.from == t.from || (unforced && u.to == t.from)));
         if !seen && !onto_rest {
             unique.push(t);
         }
