@@ -53,6 +53,8 @@ figure sweep_kinds.png s sweep --model paper --param W=9.2:11.3:43 --set Q0=80,m
 # Self-excited oscillations: the belt's cycles and steady sliding, and their basins.
 figure belt_frc.png s sweep --model-file examples/belt.ssm --scene pl16 --param vd=0.2:3:29 \
     --view frc --plot "$out/belt_frc.png"
+figure belt_map.png s map --model-file examples/belt.ssm --scene pl16 --x vd=0.2:3:57 \
+    --y zeta=0.01:0.1:37 --out "$tmp/belt_map.csv" --plot "$out/belt_map.png"
 figure belt_basins.png s basins --model-file examples/belt.ssm --scene pl16 --set vd=1.4 \
     --x x=-1.5:2.5:161 --y v=-1:3:161 --out "$tmp/belt_basins.csv" --plot "$out/belt_basins.png"
 # Smooth friction: the measured trade.

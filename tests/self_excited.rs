@@ -725,3 +725,147 @@ fn equilibria_refuses_bad_input_with_a_message() {
         "{text}"
     );
 }
+
+/// `orbit` on an unforced model solves the structure with its period
+/// unknown: the unstable slip cycle at vd = 1.6 from a guess near it, its
+/// return and period against the reference integrator, its multiplier
+/// above 1, `N = 0` and the period in the JSON.
+#[test]
+fn orbit_solves_an_autonomous_cycle_with_its_period_unknown() {
+    use stickslip::dynamics::simulate::EventKind;
+    use stickslip::orbit::structure::Structure;
+    const S: &str = "P_{10_10_10 11_10_11 12_11_12 13_12_13 14_13_14 15_14_15 16_15_15 \
+                     15_15_14 14_14_13 13_13_12 12_12_11 11_11_10}";
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(["orbit", "--model-file"])
+        .arg(belt())
+        .args([
+            "--scene", "pl16", "--set", "vd=1.6", "--guess", "0,1.3", "--json",
+        ])
+        .args(["--structure", S])
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(json["N"], 0, "{json}");
+    let period = json["period"].as_f64().expect("a period");
+    let mu = json["eigenvalues"][0][0].as_f64().expect("a multiplier");
+    assert!(mu > 1.0, "{json}");
+    let x0 = json["points"][0]["x"].as_f64().expect("x");
+
+    struct Check(f64, f64);
+    impl ModelVisitor for Check {
+        type Output = (f64, f64);
+        fn piecewise<M: Model>(self, base: M::Params) -> Option<(f64, f64)> {
+            let p = base
+                .with_pairs(M::identity(&base), &[("vd", 1.6)])
+                .expect("params");
+            let info = M::info(&p);
+            let first = info.mappings[Structure::parse(info, S, 1).expect("parses").steps()[0]];
+            let vb = M::boundary_velocity(&p, first.from);
+            let (events, _) = integrate::<M>(&p, self.0, vb, first.domain, 1.5 * self.1);
+            let e = events
+                .iter()
+                .filter(|e| e.boundary == first.from && e.kind == EventKind::Pass)
+                .nth(1)
+                .copied()
+                .expect("returns");
+            Some((e.x, e.phase / M::oscillator(&p).frequency))
+        }
+    }
+    let (x1, t1) = ModelRef::File {
+        path: belt(),
+        scene: Some("pl16".to_string()),
+    }
+    .visit(Check(x0, period))
+    .expect("loads")
+    .expect("piecewise");
+    assert!((x1 - x0).abs() <= 1e-9 * x0.abs(), "{x1} vs {x0}");
+    assert!((t1 - period).abs() <= 1e-9 * period, "{t1} vs {period}");
+}
+
+/// `map` of an unforced model shows its regimes over two parameters:
+/// steady sliding only, bistable, the cycle only; its two methods agree
+/// cell by cell (continuation of the cycles and the equilibrium's closed
+/// form, against simulations from several starts with the equilibrium's
+/// stability), and a cell is bistable exactly where `equilibria` calls
+/// steady sliding stable and a simulation from rest sticks.
+#[test]
+fn a_map_of_an_unforced_model_shows_its_regimes() {
+    let dir = std::env::temp_dir().join(format!("stickslip-belt-map-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let mut cells: Vec<Vec<(String, String)>> = Vec::new();
+    for method in ["continuation", "simulation"] {
+        let out = dir.join(format!("{method}.csv"));
+        let _ = std::fs::remove_file(&out);
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .args(["map", "--model-file"])
+            .arg(belt())
+            .args([
+                "--scene",
+                "pl16",
+                "--x",
+                "vd=0.2:3:8",
+                "--y",
+                "zeta=0.02:0.1:4",
+            ])
+            .args(["--method", method, "--out"])
+            .arg(&out)
+            .output()
+            .expect("runs");
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let text = std::fs::read_to_string(&out).expect("csv");
+        cells.push(
+            text.lines()
+                .skip(2)
+                .map(|l| {
+                    let f: Vec<&str> = l.split(',').collect();
+                    (
+                        format!("{},{}", f[1], f[2]),
+                        f[4].trim_matches('"').to_string(),
+                    )
+                })
+                .collect(),
+        );
+    }
+    assert_eq!(cells[0], cells[1]);
+    let kinds: std::collections::BTreeSet<&str> = cells[0].iter().map(|c| c.1.as_str()).collect();
+    for regime in ["NM", "NM;stick-slip cycle", "stick-slip cycle"] {
+        assert!(kinds.contains(regime), "{kinds:?}");
+    }
+    // Bistable exactly where steady sliding is stable and the cycle lives.
+    struct Stable(f64, f64);
+    impl ModelVisitor for Stable {
+        type Output = bool;
+        fn piecewise<M: Model>(self, base: M::Params) -> Option<bool> {
+            let p = base
+                .with_pairs(M::identity(&base), &[("vd", self.0), ("zeta", self.1)])
+                .expect("params");
+            Some(steady_sliding::<M>(&p).is_ok_and(|e| e.verdict == Verdict::Stable))
+        }
+    }
+    for (at, motions) in &cells[0] {
+        let (vd, zeta) = at.split_once(',').expect("two coordinates");
+        let stable = ModelRef::File {
+            path: belt(),
+            scene: Some("pl16".to_string()),
+        }
+        .visit(Stable(vd.parse().expect("vd"), zeta.parse().expect("zeta")))
+        .expect("loads")
+        .expect("piecewise");
+        assert_eq!(
+            motions.split(';').any(|m| m == "NM"),
+            stable,
+            "{at}: {motions}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -5,10 +5,11 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use stickslip::models as catalogue;
+use stickslip::models::{ModelRef, UnknownModel};
 use stickslip::output::describe::describe as description;
-use stickslip::{Bound, Model};
+use stickslip::{Bound, Model, ModelVisitor, SmoothModel};
 
-use crate::command::{params as checked, with_model, Command, ModelSpec};
+use crate::command::{lookup, params as checked, with_model, Command, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 /// The names of the compiled-in piecewise-linear models and scenes.
@@ -26,47 +27,58 @@ type ParamRow = (
     bool,
 );
 
-struct Params;
+/// A parameter row of every parameter in declaration order.
+fn rows(params: &'static [stickslip::model::ParamInfo]) -> Vec<ParamRow> {
+    params
+        .iter()
+        .map(|p| {
+            let bounds = p
+                .bounds
+                .iter()
+                .map(|(op, b)| {
+                    let op = match op {
+                        Bound::Gt => ">",
+                        Bound::Ge => ">=",
+                        Bound::Lt => "<",
+                        Bound::Le => "<=",
+                    };
+                    (op, *b)
+                })
+                .collect();
+            (p.name, p.default, bounds, p.doc, p.free)
+        })
+        .collect()
+}
 
-impl Command for Params {
-    type Output = Vec<ParamRow>;
-    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, Failure> {
-        Ok(M::info(&base)
-            .params
-            .iter()
-            .map(|p| {
-                let bounds = p
-                    .bounds
-                    .iter()
-                    .map(|(op, b)| {
-                        let op = match op {
-                            Bound::Gt => ">",
-                            Bound::Ge => ">=",
-                            Bound::Lt => "<",
-                            Bound::Le => "<=",
-                        };
-                        (op, *b)
-                    })
-                    .collect();
-                (p.name, p.default, bounds, p.doc, p.free)
-            })
-            .collect())
+/// A model's name and parameter rows: of a piecewise model, or of a smooth
+/// law itself (which `equilibria` studies; the analyses that need closed
+/// forms refuse it with a message naming its scenes).
+struct Identify;
+
+impl ModelVisitor for Identify {
+    type Output = (&'static str, Vec<ParamRow>);
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        let info = M::info(&base);
+        Some((info.name, rows(info.params)))
     }
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        let info = M::info(&base);
+        Some((info.name, rows(info.params)))
+    }
+}
+
+fn identify(model: &ModelSpec) -> Result<(&'static str, Vec<ParamRow>), Failure> {
+    let model = lookup(model)?;
+    model.visit(Identify)?.ok_or_else(|| match model {
+        ModelRef::Name(name) => UnknownModel { name }.into(),
+        other => Failure::new(Kind::Model, format!("`{other}`: no model")),
+    })
 }
 
 /// Model `model`'s parameters, in declaration order.
 #[pyfunction]
 pub fn params(py: Python<'_>, model: ModelSpec) -> PyResult<Vec<ParamRow>> {
-    Ok(py.detach(|| with_model(&model, Params))?)
-}
-
-struct Name;
-
-impl Command for Name {
-    type Output = &'static str;
-    fn run<M: Model>(self, base: M::Params) -> Result<Self::Output, Failure> {
-        Ok(M::info(&base).name)
-    }
+    Ok(py.detach(|| identify(&model))?.1)
 }
 
 /// The name of the model `model` names (`paper`, `paper::sweep_w`; for a
@@ -74,7 +86,7 @@ impl Command for Name {
 /// `stickslip check`'s report.
 #[pyfunction]
 pub fn name(py: Python<'_>, model: ModelSpec) -> PyResult<String> {
-    Ok(py.detach(|| with_model(&model, Name))?.to_string())
+    Ok(py.detach(|| identify(&model))?.0.to_string())
 }
 
 struct Describe(Vec<(String, f64)>);

@@ -90,6 +90,7 @@ def results(paper) -> Dict[str, Any]:
         "Map": paper.map(x=("W", 0.2, 8, 3), y=("Q0", 0, 180, 2), progress=False),
         "Curves": paper.curves(x=("W", 3.0, 4.0), y=("Q0", 65, 75), count=10, spread=0),
         "Lyapunov": paper.lyapunov(transient=50, periods=50, W=5, Q0=70),
+        "Equilibria": stickslip.Model("stribeck").equilibria(along=("V", 0.2, 3.0, 3), Q0=0),
         "Basins": paper.basins(x=BASIN_X, y=BASIN_V, samples=10, progress=False, **BASIN_SET),
     }
 

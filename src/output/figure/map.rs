@@ -31,9 +31,14 @@ const NOT_COMPUTED: &str = "not computed";
 /// Pixels between the legend of the sets and that of the curves.
 const KEY_GAP: i32 = 16;
 
-/// Labels with a fixed colour: no motion, and points without a motion found.
+/// Labels with a fixed colour: no motion, and points without a motion found
+/// (a set of motions, an unforced model's cycles among them, takes the
+/// palette's).
 fn is_special(label: &str) -> bool {
-    !label.starts_with("P_") && !label.starts_with("NM +")
+    !label.starts_with("P_")
+        && !label.starts_with("NM +")
+        && !label.contains("stick-slip cycle")
+        && !label.contains("slip cycle")
 }
 
 fn colour_of(label: &str, rank: usize) -> RGBColor {

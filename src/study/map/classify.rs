@@ -206,9 +206,13 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
         ..AttractorOptions::default()
     };
     let mut found: Vec<Motion> = Vec::new();
-    let mut no_motion = false;
+    // Unforced: stable steady sliding is known without a simulation, whose
+    // starts may all miss its basin where it is small (near its loss of
+    // stability).
+    let mut no_motion = crate::orbit::equilibrium::steady_sliding::<M>(sim.params())
+        .is_ok_and(|e| e.verdict == crate::orbit::equilibrium::Verdict::Stable);
     let mut stick = false;
-    let mut autonomous = false;
+    let mut cycles: Vec<&'static str> = Vec::new();
     let mut problems: Vec<String> = Vec::new();
     for (k, (x0, v0, phase0)) in starts(&sim).into_iter().enumerate() {
         let outcome = sim
@@ -223,7 +227,12 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
             }
             Ok(Attractor::NoMotion(_)) => no_motion = true,
             Ok(Attractor::Stick(_)) => stick = true,
-            Ok(Attractor::Autonomous(_)) => autonomous = true,
+            Ok(Attractor::Autonomous(c)) => {
+                let name = super::cycle_label(&c);
+                if !cycles.contains(&name) {
+                    cycles.push(name);
+                }
+            }
             Err(e @ OrbitError::Unsettled { .. }) => problems.push(format!(
                 "start {}: {}",
                 k + 1,
@@ -239,9 +248,7 @@ fn settle<M: Model>(p: M::Params) -> (String, Vec<String>) {
     if stick {
         motions.push(STICK.to_string());
     }
-    if autonomous {
-        motions.push("autonomous".to_string());
-    }
+    motions.extend(cycles.iter().map(|c| c.to_string()));
     motions.sort();
     let status = if problems.is_empty() {
         "ok".to_string()

@@ -301,8 +301,8 @@ fn take<M: Model>(
                 Attractor::Stick(_) => {
                     cell.others.insert(STICK);
                 }
-                Attractor::Autonomous(_) => {
-                    cell.others.insert("autonomous");
+                Attractor::Autonomous(c) => {
+                    cell.others.insert(super::cycle_label(&c));
                 }
             }
             Ok(())

@@ -79,3 +79,14 @@ pub const NO_MOTION: &str = "NM";
 
 /// The label of a permanent stick in a map.
 pub const STICK: &str = "stick";
+
+/// The label of an unforced model's cycle in a map: `stick-slip cycle` or
+/// `slip cycle` (its structure changes along the axes as its slip crosses
+/// more or fewer pieces of a law; the regime is what the map shows).
+pub fn cycle_label(c: &crate::orbit::attractor::AutonomousCycle) -> &'static str {
+    if c.stick > 0.0 {
+        "stick-slip cycle"
+    } else {
+        "slip cycle"
+    }
+}
