@@ -134,6 +134,48 @@ fn next_event_allocates_nothing_in_domains_and_in_stick() {
     }
 }
 
+/// Newton on an autonomous structure (the undamped Coulomb belt
+/// oscillator's stick-slip cycle, period unknown): the direction, a step
+/// and a whole solve from a perturbed guess allocate nothing.
+#[test]
+fn newton_on_an_autonomous_cycle_allocates_nothing() {
+    use stickslip::models::coulomb::{self, Coulomb};
+    use stickslip::orbit::attractor::{self, Attractor, AttractorOptions};
+    let p = coulomb::Params {
+        Q0: 0.0,
+        d: 0.0,
+        V: 0.5,
+        ..coulomb::Params::default()
+    };
+    let sim = Simulator::<Coulomb>::new(p, SimOptions::default()).expect("params");
+    let start = sim.start(0.0, 0.5, 0.0).expect("start");
+    let Ok(Attractor::Autonomous(cycle)) =
+        attractor::find(&sim, start, AttractorOptions::default())
+    else {
+        panic!("the stick-slip cycle")
+    };
+    let structure = Structure::autonomous(sim.info(), &cycle.steps).expect("structure");
+    assert!(structure.is_autonomous());
+    let mut solver = PeriodicSolver::<Coulomb>::new(structure);
+    let mut guess: Vec<SwitchingPoint> = cycle
+        .points
+        .iter()
+        .map(|q| SwitchingPoint {
+            phase: q.phase * 1.01,
+            x: q.x * 1.01,
+        })
+        .collect();
+    let (n, dir) = allocations(|| solver.direction(&p, &guess));
+    assert!(dir.is_ok(), "{dir:?}");
+    assert_eq!(n, 0, "direction allocated {n} times");
+    let (n, t) = allocations(|| solver.solve(&p, &mut guess, NewtonOptions::default()));
+    assert!(t.converged(), "{t:?}");
+    assert_eq!(n, 0, "solve allocated {n} times");
+    for (a, b) in guess.iter().zip(&cycle.points) {
+        assert!((a.x - b.x).abs() <= 1e-12 && (a.phase - b.phase).abs() <= 1e-12);
+    }
+}
+
 #[test]
 fn the_counter_counts() {
     // The checks above can fail: an allocation on this thread is seen.
