@@ -13,9 +13,11 @@
 //! fixes.
 //!
 //! Where a stick-slip cycle's stick shrinks to nothing along a parameter,
-//! the cycle becomes a slip cycle touching the stick boundary: [`without_stick`]
-//! gives that slip cycle's structure and points, from which a sweep follows
-//! it (a non-smooth fold of cycles).
+//! the cycle becomes a slip cycle touching the stick boundary, and where an
+//! excursion beyond a boundary shrinks to nothing, the cycle without it:
+//! [`shrinking`] finds that mapping and [`without`] gives the reduced
+//! cycle's structure and points, from which a sweep follows it (through a
+//! non-smooth fold of cycles, and on past every excursion it loses).
 
 use crate::model::{MappingKind, Model, ModelInfo};
 use crate::orbit::periodic::{NewtonOptions, PeriodicSolver, SwitchingPoint, Termination};
