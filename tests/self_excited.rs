@@ -869,3 +869,51 @@ fn a_map_of_an_unforced_model_shows_its_regimes() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `describe` of an unforced model names its steady sliding, in text and
+/// JSON, as `equilibria` gives it; a forced model has none.
+#[test]
+fn describe_names_steady_sliding() {
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
+            .arg("describe")
+            .args(args)
+            .output()
+            .expect("runs");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).to_string()
+    };
+    let file = belt();
+    let file = file.to_str().expect("utf-8 path");
+    let json: serde_json::Value = serde_json::from_str(&run(&[
+        "--model-file",
+        file,
+        "--scene",
+        "pl16",
+        "--set",
+        "vd=1.5",
+        "--json",
+    ]))
+    .expect("json");
+    let (s, _) = ModelRef::File {
+        path: belt(),
+        scene: Some("pl16".to_string()),
+    }
+    .visit(Scanned("vd", 1.5, 1.5, 1))
+    .expect("loads")
+    .expect("piecewise");
+    let x = s.points[0].equilibrium.expect("steady sliding").x;
+    assert_eq!(json["steady_sliding"]["x"].as_f64(), Some(x), "{json}");
+    assert_eq!(json["steady_sliding"]["verdict"], "stable");
+    let text = run(&["--model-file", file, "--scene", "pl16", "--set", "vd=1.5"]);
+    assert!(
+        text.contains("steady sliding at x = 0.527528324852"),
+        "{text}"
+    );
+    let forced = run(&["--model", "paper", "--json"]);
+    assert!(!forced.contains("steady_sliding"), "{forced}");
+}

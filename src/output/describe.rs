@@ -4,6 +4,7 @@ use serde::Serialize;
 
 use crate::model::param::ParamSet;
 use crate::model::{Model, Regime};
+use crate::orbit::equilibrium::{steady_sliding, Equilibrium};
 
 /// A domain at given parameters.
 #[derive(Clone, Debug, Serialize)]
@@ -50,6 +51,13 @@ pub struct Description {
     pub boundaries: Vec<BoundaryDescription>,
     /// The generated mappings.
     pub mappings: Vec<String>,
+    /// With no forcing, steady sliding: its rest position, eigenvalues and
+    /// stability (as `simulate --json` gives it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady_sliding: Option<Equilibrium>,
+    /// Where it rests (`domain 15`; text output only).
+    #[serde(skip)]
+    pub seat: String,
 }
 
 /// Describe model `M` at parameters `p`.
@@ -95,12 +103,15 @@ pub fn describe<M: Model>(p: &M::Params) -> Description {
             .find(|x| x.label == b.label)
             .map(|x| x.number)
     });
+    let steady = steady_sliding::<M>(p).ok();
     Description {
         model: info.name.to_string(),
         params,
         domains,
         boundaries,
         mappings: info.mapping_names().into_iter().map(String::from).collect(),
+        seat: steady.map_or_else(String::new, |e| e.seat.label(info)),
+        steady_sliding: steady,
     }
 }
 
@@ -156,6 +167,14 @@ impl std::fmt::Display for Description {
             "\nmappings ({}): {}",
             self.mappings.len(),
             self.mappings.join(" ")
-        )
+        )?;
+        if let Some(e) = &self.steady_sliding {
+            writeln!(
+                f,
+                "\n{}",
+                crate::output::text::steady_sliding_line(e, &self.seat)
+            )?;
+        }
+        Ok(())
     }
 }
