@@ -8,7 +8,9 @@
 
 mod common;
 
+use std::ffi::OsStr;
 use std::path::PathBuf;
+use std::process::{Command, Output};
 
 use nalgebra::Matrix2;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
@@ -24,6 +26,25 @@ use stickslip::{Model, ModelVisitor, ParamSet, SmoothModel};
 
 fn belt() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/belt.ssm")
+}
+
+/// `stickslip ARGS…`, run to its end.
+fn stickslip<S: AsRef<OsStr>>(args: impl IntoIterator<Item = S>) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_stickslip"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+/// `stickslip COMMAND --model-file examples/belt.ssm ARGS…`.
+fn on_belt(command: &str, args: &[&str]) -> Output {
+    let file = belt();
+    let head = [
+        OsStr::new(command),
+        OsStr::new("--model-file"),
+        file.as_os_str(),
+    ];
+    stickslip(head.into_iter().chain(args.iter().map(OsStr::new)))
 }
 
 /// The eigenvalues solve `λ² + 2d λ + c = 0` and agree with nalgebra's
@@ -298,12 +319,10 @@ fn the_coulomb_stick_slip_cycle_is_its_closed_form() {
 /// sliding it rests at; the command line names it.
 #[test]
 fn simulate_names_steady_sliding() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(["simulate", "--model-file"])
-        .arg(belt())
-        .args(["--scene", "pl16", "--set", "vd=1.5", "--json"])
-        .output()
-        .expect("runs");
+    let out = on_belt(
+        "simulate",
+        &["--scene", "pl16", "--set", "vd=1.5", "--json"],
+    );
     assert!(
         out.status.success(),
         "{}",
@@ -322,12 +341,7 @@ fn simulate_names_steady_sliding() {
     .expect("piecewise");
     let x = s.points[0].equilibrium.expect("steady sliding").x;
     assert_eq!(e["x"].as_f64(), Some(x));
-    let text = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(["simulate", "--model-file"])
-        .arg(belt())
-        .args(["--scene", "pl16", "--set", "vd=1.5"])
-        .output()
-        .expect("runs");
+    let text = on_belt("simulate", &["--scene", "pl16", "--set", "vd=1.5"]);
     let text = String::from_utf8_lossy(&text.stdout);
     assert!(
         text.contains("steady sliding at x = ") && text.contains("stable"),
@@ -555,12 +569,10 @@ fn a_sweep_follows_the_cycles_and_the_fold_between_them() {
 /// what to run next.
 #[test]
 fn an_unsettled_simulation_says_what_it_found() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(["simulate", "--model-file"])
-        .arg(belt())
-        .args(["--scene", "pl16", "--set", "vd=0.5,Q0=0.05,W=1.618"])
-        .output()
-        .expect("runs");
+    let out = on_belt(
+        "simulate",
+        &["--scene", "pl16", "--set", "vd=0.5,Q0=0.05,W=1.618"],
+    );
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("no periodic motion"), "{err}");
@@ -700,11 +712,7 @@ fn newton_with_the_period_unknown_finds_the_cycle() {
 #[test]
 fn equilibria_refuses_bad_input_with_a_message() {
     let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .arg("equilibria")
-            .args(args)
-            .output()
-            .expect("runs");
+        let out = stickslip(["equilibria"].iter().chain(args));
         (
             out.status.code(),
             String::from_utf8_lossy(&out.stdout).to_string()
@@ -736,15 +744,20 @@ fn orbit_solves_an_autonomous_cycle_with_its_period_unknown() {
     use stickslip::orbit::structure::Structure;
     const S: &str = "P_{10_10_10 11_10_11 12_11_12 13_12_13 14_13_14 15_14_15 16_15_15 \
                      15_15_14 14_14_13 13_13_12 12_12_11 11_11_10}";
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-        .args(["orbit", "--model-file"])
-        .arg(belt())
-        .args([
-            "--scene", "pl16", "--set", "vd=1.6", "--guess", "0,1.3", "--json",
-        ])
-        .args(["--structure", S])
-        .output()
-        .expect("runs");
+    let out = on_belt(
+        "orbit",
+        &[
+            "--scene",
+            "pl16",
+            "--set",
+            "vd=1.6",
+            "--guess",
+            "0,1.3",
+            "--json",
+            "--structure",
+            S,
+        ],
+    );
     assert!(
         out.status.success(),
         "{}",
@@ -802,21 +815,21 @@ fn a_map_of_an_unforced_model_shows_its_regimes() {
     for method in ["continuation", "simulation"] {
         let out = dir.join(format!("{method}.csv"));
         let _ = std::fs::remove_file(&out);
-        let run = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .args(["map", "--model-file"])
-            .arg(belt())
-            .args([
+        let run = on_belt(
+            "map",
+            &[
                 "--scene",
                 "pl16",
                 "--x",
                 "vd=0.2:3:8",
                 "--y",
                 "zeta=0.02:0.1:4",
-            ])
-            .args(["--method", method, "--out"])
-            .arg(&out)
-            .output()
-            .expect("runs");
+                "--method",
+                method,
+                "--out",
+                out.to_str().expect("utf-8 path"),
+            ],
+        );
         assert!(
             run.status.success(),
             "{}",
@@ -875,11 +888,7 @@ fn a_map_of_an_unforced_model_shows_its_regimes() {
 #[test]
 fn describe_names_steady_sliding() {
     let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_stickslip"))
-            .arg("describe")
-            .args(args)
-            .output()
-            .expect("runs");
+        let out = stickslip(["describe"].iter().chain(args));
         assert!(
             out.status.success(),
             "{}",

@@ -36,7 +36,7 @@
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 use crate::model::{Model, ParamSet};
-use crate::orbit::periodic::{arrival, monodromy, SwitchingPoint};
+use crate::orbit::periodic::{arrival, closing, cycle_monodromy, cycle_shift, SwitchingPoint};
 use crate::orbit::structure::Structure;
 
 /// A point of the extended space: switching points and the parameter.
@@ -176,11 +176,7 @@ impl<M: Model> Bordered<M> {
     fn ends(&self, points: &[SwitchingPoint], k: usize) -> (SwitchingPoint, SwitchingPoint) {
         (
             points[k],
-            arrival(
-                points,
-                k,
-                crate::orbit::periodic::cycle_shift(&self.structure, points),
-            ),
+            arrival(points, k, cycle_shift(&self.structure, points)),
         )
     }
 
@@ -326,12 +322,7 @@ impl<M: Model> Bordered<M> {
         }
         // The return: δu_m = δu_0, or (δx_0, 0) for an autonomous cycle
         // (its return held at W t = 0).
-        let back = if self.structure.is_autonomous() {
-            Matrix2::new(1.0, 0.0, 0.0, 0.0)
-        } else {
-            Matrix2::identity()
-        };
-        let cycle = back - big;
+        let cycle = closing(&self.structure) - big;
         let sys = Matrix3::new(
             cycle[(0, 0)],
             cycle[(0, 1)],
@@ -457,12 +448,6 @@ impl<M: Model> Bordered<M> {
     /// reduced map `diag(0, μ)` with `μ = tr DP − 1` (the trivial
     /// eigenvalue 1 along the flow replaced by 0).
     pub fn poincare_jacobian(&self, x: &State) -> Result<Matrix2<f64>, usize> {
-        let p = self.params(x.value);
-        let shift = crate::orbit::periodic::cycle_shift(&self.structure, &x.points);
-        let dp = monodromy::<M>(&p, self.structure.steps(), shift, &x.points)?;
-        if self.structure.is_autonomous() {
-            return Ok(Matrix2::new(0.0, 0.0, 0.0, dp.trace() - 1.0));
-        }
-        Ok(dp)
+        cycle_monodromy::<M>(&self.params(x.value), &self.structure, &x.points)
     }
 }

@@ -3,10 +3,9 @@
 //! a parameter with every change of stability located.
 
 use clap::Args;
-use stickslip::model::{Model, ModelVisitor, SmoothModel};
 use stickslip::models::ModelRef;
 use stickslip::output::text::equilibria_table;
-use stickslip::study::equilibria::{scan, scan_smooth, single, single_smooth, Scan};
+use stickslip::study::equilibria::Request;
 
 use super::args::{Assignments, ModelArgs, ParamRange};
 use super::error::CliError;
@@ -45,48 +44,21 @@ pub fn run(args: EquilibriaArgs) -> Result<Outcome, CliError> {
         }
     }
     let model = args.model.lookup("stribeck");
-    let scan = model
-        .visit(Equilibria { set, range })?
-        .ok_or_else(|| match &model {
-            ModelRef::Name(name) => {
-                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
-            }
-            _ => CliError::SmoothFile {
-                model: model.to_string(),
-            },
-        })??;
+    let request = Request {
+        set: set.pairs().to_vec(),
+        range: range.map(|r| (r.name, r.from, r.to, r.count)),
+    };
+    let scan = model.visit(request)?.ok_or_else(|| match &model {
+        ModelRef::Name(name) => {
+            CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
+        }
+        _ => CliError::SmoothFile {
+            model: model.to_string(),
+        },
+    })??;
     Ok(Outcome::ok(if args.json {
         serde_json::to_string_pretty(&scan)?
     } else {
         equilibria_table(&scan)
     }))
-}
-
-struct Equilibria {
-    set: Assignments,
-    range: Option<ParamRange>,
-}
-
-impl ModelVisitor for Equilibria {
-    type Output = Result<Scan, CliError>;
-
-    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
-        Some((|| {
-            let p = self.set.params::<M>(base)?;
-            Ok(match &self.range {
-                Some(r) => scan::<M>(p, &r.name, r.from, r.to, r.count)?,
-                None => single::<M>(p),
-            })
-        })())
-    }
-
-    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
-        Some((|| {
-            let p = self.set.params::<M>(base)?;
-            Ok(match &self.range {
-                Some(r) => scan_smooth::<M>(p, &r.name, r.from, r.to, r.count)?,
-                None => single_smooth::<M>(p),
-            })
-        })())
-    }
 }

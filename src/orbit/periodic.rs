@@ -47,6 +47,48 @@ pub fn cycle_shift(structure: &Structure, points: &[SwitchingPoint]) -> f64 {
     structure.shift(points.first().map_or(f64::NAN, |q| q.phase))
 }
 
+/// How the return's deviation follows the first point's in the
+/// elimination along the cycle (`δu_m = B δu_0`, ordered `(x, W t)`): the
+/// identity, or for an autonomous cycle (held with its return at
+/// `W t = 0`) `diag(1, 0)`.
+pub fn closing(structure: &Structure) -> Matrix2<f64> {
+    if structure.is_autonomous() {
+        Matrix2::new(1.0, 0.0, 0.0, 0.0)
+    } else {
+        Matrix2::identity()
+    }
+}
+
+/// An autonomous cycle's nontrivial Floquet multiplier from its monodromy:
+/// the eigenvalues sum to the trace and one is the trivial 1 along the
+/// flow, so the other is `tr DP − 1` (SPEC §14).
+pub fn nontrivial_multiplier(dp: &Matrix2<f64>) -> f64 {
+    dp.trace() - 1.0
+}
+
+/// `DP` as reported for a cycle of `structure`: itself, or for an
+/// autonomous cycle the reduced map `diag(0, μ)` (the trivial eigenvalue 1
+/// replaced by 0), so that stability and the test functions need no case
+/// of their own.
+pub fn reported(structure: &Structure, dp: Matrix2<f64>) -> Matrix2<f64> {
+    if structure.is_autonomous() {
+        Matrix2::new(0.0, 0.0, 0.0, nontrivial_multiplier(&dp))
+    } else {
+        dp
+    }
+}
+
+/// [`monodromy`] of the cycle of `structure` through `points`, as
+/// [`reported`]; or the mapping whose arrival is singular.
+pub fn cycle_monodromy<M: Model>(
+    p: &M::Params,
+    structure: &Structure,
+    points: &[SwitchingPoint],
+) -> Result<Matrix2<f64>, usize> {
+    let dp = monodromy::<M>(p, structure.steps(), cycle_shift(structure, points), points)?;
+    Ok(reported(structure, dp))
+}
+
 /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` of the cycle of
 /// mappings `steps` at `points`, ordered `(W t, x)` (SPEC §7, Eq. B.1), or
 /// the index of the first mapping whose arrival is tangent to its boundary.
@@ -401,12 +443,7 @@ impl<M: Model> PeriodicSolver<M> {
         }
         // The return: δu_m = δu_0, or (δx_0, 0) for an autonomous cycle
         // (held with its return at W t = 0; the first phase carries −W T).
-        let back = if self.structure.is_autonomous() {
-            Matrix2::new(1.0, 0.0, 0.0, 0.0)
-        } else {
-            Matrix2::identity()
-        };
-        let cycle = back - product;
+        let cycle = closing(&self.structure) - product;
         let inv = cycle.try_inverse().ok_or(SingularStep {
             segment: None,
             reason: "I − DP is singular: an eigenvalue of the Poincaré map equals 1 (saddle-node)",
@@ -630,22 +667,11 @@ impl<M: Model> PeriodicSolver<M> {
         p: &M::Params,
     ) -> Result<Matrix2<f64>, SingularStep> {
         chain(M::info(p), self.structure.steps(), 0, |k| self.evals[k])
-            .map(|dp| self.reduced(dp))
+            .map(|dp| reported(&self.structure, dp))
             .map_err(|k| SingularStep {
                 segment: Some(k),
                 reason: "the arrival is tangent to the boundary (grazing)",
             })
-    }
-
-    /// `DP` as reported: itself, or for an autonomous cycle the reduced map
-    /// `diag(0, μ)`, `μ = tr DP − 1` the nontrivial multiplier (the trivial
-    /// eigenvalue 1 along the flow replaced by 0, SPEC §14).
-    fn reduced(&self, dp: Matrix2<f64>) -> Matrix2<f64> {
-        if self.structure.is_autonomous() {
-            Matrix2::new(0.0, 0.0, 0.0, dp.trace() - 1.0)
-        } else {
-            dp
-        }
     }
 
     /// The Poincaré-map Jacobian `DP = DP_{σm} ⋯ DP_{σ1}` at `points`,
@@ -655,14 +681,7 @@ impl<M: Model> PeriodicSolver<M> {
         p: &M::Params,
         points: &[SwitchingPoint],
     ) -> Result<Matrix2<f64>, SingularStep> {
-        monodromy::<M>(
-            p,
-            self.structure.steps(),
-            cycle_shift(&self.structure, points),
-            points,
-        )
-        .map(|dp| self.reduced(dp))
-        .map_err(|k| SingularStep {
+        cycle_monodromy::<M>(p, &self.structure, points).map_err(|k| SingularStep {
             segment: Some(k),
             reason: "the arrival is tangent to the boundary (grazing)",
         })

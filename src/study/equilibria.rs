@@ -238,3 +238,39 @@ pub fn single_smooth<M: SmoothModel>(p: M::Params) -> Scan {
     )
     .expect("a fixed parameter set")
 }
+
+/// What the `equilibria` command and Python's `Model.equilibria` ask of any
+/// model, piecewise or a smooth law itself: its defaults with `set`
+/// applied, then the one parameter set, or the scan along `range =
+/// (name, from, to, count)`. Visited through [`crate::models::ModelRef`].
+pub struct Request {
+    /// Parameters set, `(name, value)`.
+    pub set: Vec<(String, f64)>,
+    /// The parameter and its grid, if any.
+    pub range: Option<(String, f64, f64, usize)>,
+}
+
+impl Request {
+    fn params<M: FrictionOscillator>(&self, base: M::Params) -> Result<M::Params, ParamError> {
+        let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+        base.with_pairs(M::identity(&base), &pairs)
+    }
+}
+
+impl crate::model::ModelVisitor for Request {
+    type Output = Result<Scan, ParamError>;
+
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        Some(self.params::<M>(base).and_then(|p| match &self.range {
+            Some((name, from, to, count)) => scan::<M>(p, name, *from, *to, *count),
+            None => Ok(single::<M>(p)),
+        }))
+    }
+
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        Some(self.params::<M>(base).and_then(|p| match &self.range {
+            Some((name, from, to, count)) => scan_smooth::<M>(p, name, *from, *to, *count),
+            None => Ok(single_smooth::<M>(p)),
+        }))
+    }
+}

@@ -92,7 +92,7 @@ pub fn autonomous_multiplier<M: Model>(
     points: &[SwitchingPoint],
 ) -> Option<f64> {
     let dp = crate::orbit::periodic::monodromy::<M>(p, steps, shift, points).ok()?;
-    let mu = dp.trace() - 1.0;
+    let mu = crate::orbit::periodic::nontrivial_multiplier(&dp);
     mu.is_finite().then_some(mu)
 }
 
