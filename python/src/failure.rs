@@ -98,6 +98,20 @@ impl From<SimError> for Failure {
     }
 }
 
+impl From<stickslip::orbit::smooth::SmoothError> for Failure {
+    fn from(e: stickslip::orbit::smooth::SmoothError) -> Self {
+        use stickslip::orbit::smooth::SmoothError;
+        let kind = match &e {
+            SmoothError::Integrate(_) => Kind::Simulation,
+            SmoothError::Equilibrium(_) => Kind::Param,
+            SmoothError::NoReturn { .. }
+            | SmoothError::NotSettled { .. }
+            | SmoothError::NoPeriodic { .. } => Kind::Unsettled,
+        };
+        Self::new(kind, e)
+    }
+}
+
 impl From<OrbitError> for Failure {
     fn from(e: OrbitError) -> Self {
         let kind = match &e {

@@ -17,6 +17,7 @@ mod catalogue;
 mod command;
 mod diagram;
 mod failure;
+mod law;
 mod motion;
 mod progress;
 mod study;
@@ -32,6 +33,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(catalogue::describe, m)?)?;
     m.add_function(wrap_pyfunction!(catalogue::check, m)?)?;
     m.add_function(wrap_pyfunction!(motion::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(law::simulate_law, m)?)?;
     m.add_function(wrap_pyfunction!(motion::orbit, m)?)?;
     m.add_class::<motion::Trajectory>()?;
     m.add_function(wrap_pyfunction!(diagram::orbit_diagram, m)?)?;

@@ -13,7 +13,7 @@ from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _native
-from ._results import Description, Equilibria, Motion, OrbitDiagram, Sweep
+from ._results import Description, Equilibria, LawMotion, Motion, OrbitDiagram, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import InadmissibleError, InputError, NewtonError
 
@@ -128,11 +128,18 @@ class Model:
         start: Sequence[Number] = (0.0, 0.0, 0.0),
         periods: Optional[int] = None,
         **params: Number,
-    ) -> Motion:
+    ) -> Union[Motion, LawMotion]:
         """Simulate from ``start = (x, v, Wt)`` until the motion settles, and
         name and refine it (``stickslip simulate``); at most ``periods``
-        forcing periods (default 3000)."""
+        forcing periods (default 3000). A model with a smooth law (no
+        scene) is integrated and gives a :class:`LawMotion`: steady sliding
+        or a self-excited cycle when unforced (``periods`` then counts
+        returns to the section ``v = 0``), a periodic motion when forced."""
         x, v, wt = _start(start)
+        n = None if periods is None else int(periods)
+        law = _native.simulate_law(self._spec, _pairs(params), (x, v, wt), n)
+        if law is not None:
+            return LawMotion(json.loads(law))
         return _motion(_native.simulate(self._spec, _pairs(params), (x, v, wt), periods))
 
     def orbit(

@@ -91,6 +91,12 @@ def curves(
     max_partners: Optional[int] = None,
     edges: bool = True,
 ) -> str: ...
+def simulate_law(
+    model: ModelSpec,
+    set: Pairs,
+    start: Tuple[float, float, float],
+    periods: Optional[int] = None,
+) -> Optional[str]: ...
 def equilibria(
     model: ModelSpec,
     set: Pairs,

@@ -197,6 +197,47 @@ class Description(Result):
         p.text(self._text)
 
 
+class LawMotion(Result):
+    """What a smooth law settles to, integrated (``stickslip simulate
+    --json`` of a model with a smooth law and no scene): ``kind`` is
+    ``"steady_sliding"`` (``equilibrium``), ``"cycle"`` (a self-excited
+    cycle: ``x`` on the section ``v = 0``, ``period``, ``stick``,
+    ``multiplier``, ``verdict``, ``events``) or ``"periodic"`` (forced:
+    ``periods``, ``phase``, ``x``, ``v``, ``sticks``, ``multipliers``,
+    ``verdict``, ``events``). ``period``, ``stick`` and ``multiplier`` are
+    also attributes of a cycle; ``stable`` of every kind."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        super().__init__(data)
+        self.kind: str = data["kind"]
+        if self.kind == "steady_sliding":
+            verdict = data["equilibrium"]["verdict"]
+        elif self.kind == "cycle":
+            cycle = data["cycle"]
+            verdict = cycle["verdict"]
+            self.period: float = cycle["period"]
+            self.stick: float = cycle["stick"]
+            self.multiplier: float = cycle["multiplier"]
+        else:
+            verdict = data["verdict"]
+        self.stable: bool = verdict == "stable"
+
+    def to_pandas(self) -> Any:
+        """One row: the ``kind``, ``stable``, and the cycle's ``period``,
+        ``stick``, ``multiplier`` and section ``x`` (NaN where the kind has
+        none), or the forced motion's ``periods``, ``x`` and ``v``."""
+        row: Dict[str, Any] = {"kind": self.kind, "stable": self.stable}
+        d = self._data.get("cycle", self._data)
+        for key in ("period", "stick", "multiplier", "x", "v", "periods"):
+            row[key] = d.get(key, np.nan)
+        return _pandas().DataFrame([row])
+
+    def __repr__(self) -> str:
+        if self.kind == "cycle":
+            return f"LawMotion(cycle, period={self.period!r}, stick={self.stick!r}, stable={self.stable})"
+        return f"LawMotion({self.kind}, stable={self.stable})"
+
+
 class Equilibria(Result):
     """Steady sliding of an unforced model (``stickslip equilibria --json``):
     ``model``, ``param``, ``points`` (at each value: ``equilibrium`` with

@@ -91,6 +91,7 @@ def results(paper) -> Dict[str, Any]:
         "Curves": paper.curves(x=("W", 3.0, 4.0), y=("Q0", 65, 75), count=10, spread=0),
         "Lyapunov": paper.lyapunov(transient=50, periods=50, W=5, Q0=70),
         "Equilibria": stickslip.Model("stribeck").equilibria(along=("V", 0.2, 3.0, 3), Q0=0),
+        "LawMotion": stickslip.Model("stribeck").simulate(),
         "Basins": paper.basins(x=BASIN_X, y=BASIN_V, samples=10, progress=False, **BASIN_SET),
     }
 
@@ -247,6 +248,25 @@ def test_unforced_motions_carry_their_stability():
     assert rest.kind == "NM" and rest.stable is True
     assert abs(rest.steady_sliding["x"] - 0.3) < 1e-15
     assert rest.steady_sliding["verdict"] == "stable"
+
+
+def test_simulate_takes_a_smooth_law_itself():
+    """The Stribeck law integrated: unforced below its Hopf point it settles
+    on a stick-slip cycle (superstable: multiplier 0), above it in the
+    bistable window to steady sliding from rest; forced, on a periodic
+    motion with stick. The same numbers as `stickslip simulate --json`."""
+    law = stickslip.Model("stribeck")
+    cycle = law.simulate(Q0=0, V=0.5)
+    assert cycle.kind == "cycle" and cycle.stable
+    assert cycle.stick > 0 and cycle.period > cycle.stick and cycle.multiplier == 0.0
+    events = cycle["cycle"]["events"]
+    assert [e["after"] for e in events].count("stick") == 1
+    rest = law.simulate(Q0=0, V=3.0)
+    assert rest.kind == "steady_sliding" and rest.stable
+    forced = law.simulate()
+    assert forced.kind == "periodic" and forced["sticks"] and forced["periods"] == 1
+    with pytest.raises(stickslip.InputError):
+        law.simulate(periods=0)
 
 
 def test_equilibria_of_a_smooth_law_locate_its_hopf_point():

@@ -28,7 +28,8 @@ pub enum CliError {
     /// takes a piecewise-linear one.
     #[error(
         "`{model}` has a smooth law: give one of its piecewise-linear scenes with `--scene` \
-         (a `pieces: N` scene), or use it with `trade`"
+         (a `pieces: N` scene), or use the law itself with `simulate` (unforced), \
+         `equilibria` or `trade`"
     )]
     SmoothFile {
         /// The file.
@@ -198,6 +199,17 @@ pub enum CliError {
     /// No periodic motion was found.
     #[error(transparent)]
     Orbit(#[from] OrbitError),
+    /// A smooth law's simulation.
+    #[error(transparent)]
+    Smooth(#[from] stickslip::orbit::smooth::SmoothError),
+    /// `--plot` or `--csv` of a smooth law's motion.
+    #[error("`{option}` draws a piecewise model's motion: for the smooth law `{model}`, print the text or `--json`, or give one of its scenes with `--scene`")]
+    SmoothOutput {
+        /// The option given.
+        option: &'static str,
+        /// The model.
+        model: String,
+    },
     /// The sweep could not run.
     #[error(transparent)]
     Sweep(#[from] SweepError),

@@ -48,7 +48,9 @@ enum Command {
     /// check it (admissibility) and give its stability.
     Orbit(orbit::OrbitArgs),
     /// Simulate from a start state until the motion settles; name and refine
-    /// the periodic motion, or certify that none touches a boundary (NM).
+    /// the periodic motion, or certify that none touches a boundary (NM). A
+    /// smooth law (a model without `--scene`) is integrated: steady sliding
+    /// or a self-excited cycle when unforced, a periodic motion when forced.
     Simulate(simulate::SimulateArgs),
     /// Follow periodic motions along one parameter; locate every transition
     /// (grazing, stick onset and vanishing, passable onset, |λ| = 1) and what

@@ -4,13 +4,16 @@
 
 use clap::Args;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
+use stickslip::model::registry::ModelVisitor;
+use stickslip::model::smooth::SmoothModel;
+use stickslip::models::ModelRef;
 use stickslip::orbit::attractor::AttractorOptions;
+use stickslip::orbit::smooth::{simulate as simulate_smooth, SmoothOptions};
 use stickslip::output::settled::settle;
+use stickslip::output::text::smooth_settled;
 use stickslip::Model;
 
-use super::args::{
-    check_plot_path, parse_numbers, with_model, Assignments, ModelArgs, OutputArgs, WithModel,
-};
+use super::args::{check_plot_path, parse_numbers, Assignments, ModelArgs, OutputArgs, WithModel};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 
@@ -25,7 +28,8 @@ pub struct SimulateArgs {
     /// Start state `x,v,W t` (default: rest, `0,0,0`).
     #[arg(long, allow_hyphen_values = true)]
     from: Option<String>,
-    /// Forcing periods simulated at most (default 3000).
+    /// Forcing periods simulated at most (default 3000); for an unforced
+    /// smooth law, returns to the section `v = 0`.
     #[arg(long)]
     periods: Option<u32>,
     #[command(flatten)]
@@ -40,13 +44,27 @@ pub fn run(args: SimulateArgs) -> Result<Outcome, CliError> {
         Some(f) => parse_numbers::<3>(&f, "x,v,W t")?,
         None => [0.0; 3],
     };
+    if args.periods == Some(0) {
+        return Err(CliError::ZeroPeriods);
+    }
+    let model = args.model.lookup("paper");
     let simulate = Simulate {
         set,
         from,
         periods: args.periods,
         output: args.output,
+        model: model.to_string(),
     };
-    with_model(&args.model.lookup("paper"), simulate)
+    model.visit(simulate)?.unwrap_or_else(|| {
+        Err(match &model {
+            ModelRef::Name(name) => {
+                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
+            }
+            _ => CliError::SmoothFile {
+                model: model.to_string(),
+            },
+        })
+    })
 }
 
 struct Simulate {
@@ -54,6 +72,55 @@ struct Simulate {
     from: [f64; 3],
     periods: Option<u32>,
     output: OutputArgs,
+    model: String,
+}
+
+impl ModelVisitor for Simulate {
+    type Output = Result<Outcome, CliError>;
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        Some(WithModel::run::<M>(self, base))
+    }
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        Some(self.smooth::<M>(base))
+    }
+}
+
+impl Simulate {
+    /// A smooth law by its integrator. Unforced: steady sliding or a
+    /// self-excited cycle, by shooting on the section `v = 0`. Forced: the
+    /// periodic motion, by shooting on the stroboscopic map.
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Result<Outcome, CliError> {
+        for (given, option) in [
+            (self.output.plot.is_some(), "--plot"),
+            (self.output.csv.is_some(), "--csv"),
+        ] {
+            if given {
+                return Err(CliError::SmoothOutput {
+                    option,
+                    model: self.model,
+                });
+            }
+        }
+        let p = self.set.params::<M>(base)?;
+        let [x, v, phase] = self.from;
+        let mut options = SmoothOptions::default();
+        if let Some(k) = self.periods {
+            options.max_returns = k;
+        }
+        let settled = simulate_smooth::<M>(p, (x, v, phase), options)?;
+        Ok(Outcome::ok(if self.output.json {
+            serde_json::to_string_pretty(&settled)?
+        } else {
+            format!(
+                "model {} (the law itself, integrated at relative tolerance {:.0e})\n\
+                 simulated from (x, v, W t) = ({x}, {v}, {phase}) ({})\n{}",
+                M::info(&p).name,
+                options.rtol,
+                self.set,
+                smooth_settled(&settled)
+            )
+        }))
+    }
 }
 
 impl WithModel for Simulate {
@@ -64,9 +131,6 @@ impl WithModel for Simulate {
         let [x, v, phase] = self.from;
         let mut opts = AttractorOptions::default();
         if let Some(k) = self.periods {
-            if k == 0 {
-                return Err(CliError::ZeroPeriods);
-            }
             opts.max_periods = k;
         }
         let set = &self.set;

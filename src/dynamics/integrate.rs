@@ -94,6 +94,8 @@ pub struct Integrator<M: SmoothModel> {
     bound: f64,
     /// `f(V+)` and `f(V−)`: the law's one-sided limits at the belt speed.
     limits: (f64, f64),
+    /// `f'(V+)` and `f'(V−)`: its one-sided slopes there.
+    slopes: (f64, f64),
     /// Relative tolerance of the steps.
     pub rtol: f64,
 }
@@ -105,10 +107,8 @@ impl<M: SmoothModel> Integrator<M> {
         let osc = M::oscillator(&p);
         let belt = M::belt(&p);
         let delta = 1e-12 * belt.abs().max(1.0);
-        let limits = (
-            M::kinetic(&p, belt + delta)[0],
-            M::kinetic(&p, belt - delta)[0],
-        );
+        let (above, below) = (M::kinetic(&p, belt + delta), M::kinetic(&p, belt - delta));
+        let (limits, slopes) = ((above[0], below[0]), (above[1], below[1]));
         Ok(Self {
             p,
             a0: osc.amplitude,
@@ -118,6 +118,7 @@ impl<M: SmoothModel> Integrator<M> {
             belt,
             bound: M::static_bound(&p),
             limits,
+            slopes,
             rtol: rtol.clamp(1e-14, 1e-2),
         })
     }
@@ -127,8 +128,18 @@ impl<M: SmoothModel> Integrator<M> {
         self.belt
     }
 
-    fn accel(&self, t: f64, x: f64, v: f64) -> f64 {
-        self.a0 * (self.w * t).cos() - self.two_d * v - self.c * x - M::kinetic(&self.p, v)[0]
+    /// The acceleration while slipping on `side`. Beyond the belt speed
+    /// the side's law is continued by its tangent at `V` (the other side's
+    /// law never enters a step of this one), so that a step reaching the
+    /// belt speed overshoots it smoothly and the crossing is located even
+    /// where both sides' fields point at the belt (the motion sticks).
+    fn accel(&self, side: Side, t: f64, x: f64, v: f64) -> f64 {
+        let friction = match side {
+            Side::Above if v <= self.belt => self.limits.0 + self.slopes.0 * (v - self.belt),
+            Side::Below if v >= self.belt => self.limits.1 + self.slopes.1 * (v - self.belt),
+            _ => M::kinetic(&self.p, v)[0],
+        };
+        self.a0 * (self.w * t).cos() - self.two_d * v - self.c * x - friction
     }
 
     fn fnf(&self, t: f64, x: f64) -> f64 {
@@ -136,7 +147,7 @@ impl<M: SmoothModel> Integrator<M> {
     }
 
     /// One Dormand–Prince 5(4) step: the 5th-order solution and the error estimate.
-    fn step(&self, t: f64, y: [f64; 2], h: f64) -> ([f64; 2], [f64; 2]) {
+    fn step(&self, side: Side, t: f64, y: [f64; 2], h: f64) -> ([f64; 2], [f64; 2]) {
         const A: [[f64; 6]; 6] = [
             [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
             [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
@@ -176,7 +187,7 @@ impl<M: SmoothModel> Integrator<M> {
             22.0 / 525.0,
             -1.0 / 40.0,
         ];
-        let f = |t: f64, y: [f64; 2]| [y[1], self.accel(t, y[0], y[1])];
+        let f = |t: f64, y: [f64; 2]| [y[1], self.accel(side, t, y[0], y[1])];
         let mut k = [[0.0; 2]; 7];
         k[0] = f(t, y);
         for s in 0..6 {
@@ -207,8 +218,121 @@ impl<M: SmoothModel> Integrator<M> {
         &self,
         start: State,
         phase_end: f64,
-        mut on_event: impl FnMut(&BeltEvent),
+        on_event: impl FnMut(&BeltEvent),
     ) -> Result<State, IntegrateError> {
+        self.run_until(start, phase_end, None, on_event)
+            .map(|(end, _)| end)
+    }
+
+    /// Integrate from `start` until the motion crosses the Poincaré section
+    /// `v = level` downwards (from above `level` to below it, while
+    /// slipping), or until phase `phase_end`, whichever comes first, calling
+    /// `on_event` at every event at the belt speed on the way. Returns the
+    /// state where it stopped and whether that is on the section (then
+    /// with `v = level` exactly). A start on the section does not count:
+    /// the motion must rise above `level` and fall through it again.
+    pub fn to_section(
+        &self,
+        start: State,
+        level: f64,
+        phase_end: f64,
+        on_event: impl FnMut(&BeltEvent),
+    ) -> Result<(State, bool), IntegrateError> {
+        self.run_until(start, phase_end, Some(level), on_event)
+    }
+
+    /// The first point in `(0, hs]` of the step from `(t, y)` to `y1` where
+    /// `gap(v)` has turned negative, from the end point or the step's cubic
+    /// Hermite interpolant (confirmed on a one-step solution): an upper
+    /// bracket for the crossing.
+    fn first_drop(
+        &self,
+        side: Side,
+        t: f64,
+        y: [f64; 2],
+        hs: f64,
+        y1: [f64; 2],
+        gap: impl Fn(f64) -> f64,
+    ) -> Option<f64> {
+        if gap(y1[1]) < 0.0 {
+            return Some(hs);
+        }
+        let a0 = self.accel(side, t, y[0], y[1]);
+        let a1 = self.accel(side, t + hs, y1[0], y1[1]);
+        for i in 1..16 {
+            let s = i as f64 / 16.0;
+            let (h00, h10, h01, h11) = (
+                2.0 * s * s * s - 3.0 * s * s + 1.0,
+                s * s * s - 2.0 * s * s + s,
+                -2.0 * s * s * s + 3.0 * s * s,
+                s * s * s - s * s,
+            );
+            let v = h00 * y[1] + h10 * hs * a0 + h01 * y1[1] + h11 * hs * a1;
+            if gap(v) < 0.0 {
+                let ys = self.step(side, t, y, s * hs).0;
+                if gap(ys[1]) < 0.0 {
+                    return Some(s * hs);
+                }
+            }
+        }
+        None
+    }
+
+    /// The crossing `gap(v) = 0` in `(0, s_hi]` by regula falsi (Illinois)
+    /// on one-step solutions from `(t, y)`: its step length and state.
+    fn locate(
+        &self,
+        side: Side,
+        t: f64,
+        y: [f64; 2],
+        s_hi: f64,
+        gap: impl Fn(f64) -> f64,
+    ) -> (f64, [f64; 2]) {
+        let g = |s: f64| {
+            let ys = self.step(side, t, y, s).0;
+            (gap(ys[1]), ys)
+        };
+        let (mut a, mut fa) = (0.0, gap(y[1]));
+        let (mut b, mut fb) = (s_hi, g(s_hi).0);
+        let mut last = 0i32;
+        for _ in 0..200 {
+            let mut s = (a * fb - b * fa) / (fb - fa);
+            if !(s > a && s < b) {
+                s = 0.5 * (a + b);
+            }
+            let fs = g(s).0;
+            if fs >= 0.0 {
+                a = s;
+                fa = fs;
+                if last == 1 {
+                    fb *= 0.5;
+                }
+                last = 1;
+            } else {
+                b = s;
+                fb = fs;
+                if last == -1 {
+                    fa *= 0.5;
+                }
+                last = -1;
+            }
+            if b - a <= 4.0 * f64::EPSILON * (t + b).abs().max(1.0) {
+                break;
+            }
+        }
+        let s = 0.5 * (a + b);
+        (s, g(s).1)
+    }
+
+    /// [`Integrator::run`], stopping on the section `v = section` if given;
+    /// the flag says whether it stopped there.
+    fn run_until(
+        &self,
+        start: State,
+        phase_end: f64,
+        section: Option<f64>,
+        mut on_event: impl FnMut(&BeltEvent),
+    ) -> Result<(State, bool), IntegrateError> {
         let w = self.w;
         let (mut t, t_end) = (start.phase / w, phase_end / w);
         let mut y = [start.x, start.v];
@@ -263,12 +387,13 @@ impl<M: SmoothModel> Integrator<M> {
                 }
                 let Some((s, upper)) = found else {
                     let dt = t_end - t0;
-                    return Ok(State {
+                    let end = State {
                         phase: phase_end,
                         x: x0 + self.belt * dt,
                         v: self.belt,
                         side: Side::Stick,
-                    });
+                    };
+                    return Ok((end, false));
                 };
                 t = t0 + s;
                 y = [x0 + self.belt * s, self.belt];
@@ -286,7 +411,7 @@ impl<M: SmoothModel> Integrator<M> {
             let sign = if side == Side::Above { 1.0 } else { -1.0 };
             let gap = |v: f64| sign * (v - self.belt);
             let hs = h.min(t_end - t).max(1e-15 * t.abs().max(1.0));
-            let (y1, err) = self.step(t, y, hs);
+            let (y1, err) = self.step(side, t, y, hs);
             let sc = |i: usize| self.rtol * (1.0 + y[i].abs().max(y1[i].abs()));
             let en = (err[0] / sc(0)).abs().max((err[1] / sc(1)).abs());
             if en.is_nan() || en > 1.0 {
@@ -300,27 +425,26 @@ impl<M: SmoothModel> Integrator<M> {
                 continue;
             }
             // Crossing: the gap negative at the end or on the Hermite interpolant.
-            let mut cross: Option<f64> = None;
-            if gap(y1[1]) < 0.0 {
-                cross = Some(hs);
-            } else {
-                let a0 = self.accel(t, y[0], y[1]);
-                let a1 = self.accel(t + hs, y1[0], y1[1]);
-                for i in 1..16 {
-                    let s = i as f64 / 16.0;
-                    let (h00, h10, h01, h11) = (
-                        2.0 * s * s * s - 3.0 * s * s + 1.0,
-                        s * s * s - 2.0 * s * s + s,
-                        -2.0 * s * s * s + 3.0 * s * s,
-                        s * s * s - s * s,
-                    );
-                    let v = h00 * y[1] + h10 * hs * a0 + h01 * y1[1] + h11 * hs * a1;
-                    if gap(v) < 0.0 {
-                        let ys = self.step(t, y, s * hs).0;
-                        if gap(ys[1]) < 0.0 {
-                            cross = Some(s * hs);
-                            break;
-                        }
+            let cross = self.first_drop(side, t, y, hs, y1, gap);
+            if let Some(level) = section {
+                // The section, downwards, before any crossing of the belt speed.
+                let above = |v: f64| v - level;
+                if above(y[1]) > 0.0 {
+                    let limit = cross.unwrap_or(hs);
+                    let y_limit = if limit < hs {
+                        self.step(side, t, y, limit).0
+                    } else {
+                        y1
+                    };
+                    if let Some(s_hi) = self.first_drop(side, t, y, limit, y_limit, above) {
+                        let (s, ys) = self.locate(side, t, y, s_hi, above);
+                        let end = State {
+                            phase: w * (t + s),
+                            x: ys[0],
+                            v: level,
+                            side,
+                        };
+                        return Ok((end, true));
                     }
                 }
             }
@@ -330,41 +454,7 @@ impl<M: SmoothModel> Integrator<M> {
                 h = hs * (0.9 * en.max(1e-10).powf(-0.2)).min(5.0);
                 continue;
             };
-            // Regula falsi (Illinois) on one-step solutions for the crossing time.
-            let g = |s: f64| {
-                let ys = self.step(t, y, s).0;
-                (gap(ys[1]), ys)
-            };
-            let (mut a, mut fa) = (0.0, gap(y[1]));
-            let (mut b, mut fb) = (s_hi, g(s_hi).0);
-            let mut last = 0i32;
-            for _ in 0..200 {
-                let mut s = (a * fb - b * fa) / (fb - fa);
-                if !(s > a && s < b) {
-                    s = 0.5 * (a + b);
-                }
-                let fs = g(s).0;
-                if fs >= 0.0 {
-                    a = s;
-                    fa = fs;
-                    if last == 1 {
-                        fb *= 0.5;
-                    }
-                    last = 1;
-                } else {
-                    b = s;
-                    fb = fs;
-                    if last == -1 {
-                        fa *= 0.5;
-                    }
-                    last = -1;
-                }
-                if b - a <= 4.0 * f64::EPSILON * (t + b).abs().max(1.0) {
-                    break;
-                }
-            }
-            let s = 0.5 * (a + b);
-            let ys = g(s).1;
+            let (s, ys) = self.locate(side, t, y, s_hi, gap);
             t += s;
             y = [ys[0], self.belt];
             // Force criteria at the belt speed (SPEC §3) with the law's one-sided limits.
@@ -390,12 +480,15 @@ impl<M: SmoothModel> Integrator<M> {
             side = after;
             h = h.min(1e-3 / w.max(1.0));
         }
-        Ok(State {
-            phase: w * t,
-            x: y[0],
-            v: y[1],
-            side,
-        })
+        Ok((
+            State {
+                phase: w * t,
+                x: y[0],
+                v: y[1],
+                side,
+            },
+            false,
+        ))
     }
 
     /// The state that follows `start` after `periods` forcing periods.

@@ -10,6 +10,7 @@
 //! * [`motion`] — a solved, checked periodic motion;
 //! * [`attractor`] — what a simulation settles on: a motion, a stick, a family;
 //! * [`autonomous`] — cycles of an unforced model by Newton, the period an unknown;
+//! * [`smooth`] — a smooth law's steady sliding or self-excited cycle, by the integrator and shooting on `v = 0`;
 //! * [`equilibrium`] — steady sliding of an unforced oscillator, its linearisation and loss of stability;
 //! * [`steady`] — a domain's steady forced response in closed form (the no-motion regime);
 //! * [`known`] — known stable motions seen stroboscopically, and a settle that stops near one;
@@ -56,6 +57,7 @@ pub mod known;
 pub mod lyapunov;
 pub mod motion;
 pub mod periodic;
+pub mod smooth;
 pub mod stability;
 pub mod steady;
 pub mod structure;

@@ -303,6 +303,74 @@ pub fn steady_sliding_line(e: &Equilibrium, seat: &str) -> String {
     line
 }
 
+/// What a smooth law's simulation settled to, in words: steady sliding,
+/// or the cycle with its period, stick, multiplier and events.
+pub fn smooth_settled(s: &crate::orbit::smooth::SmoothSettled) -> String {
+    use crate::orbit::smooth::SmoothSettled;
+    match s {
+        SmoothSettled::Periodic(m) => smooth_periodic(m),
+        SmoothSettled::SteadySliding {
+            equilibrium,
+            returns,
+        } => format!(
+            "{} (after {returns} returns to the section v = 0)\n",
+            steady_sliding_line(equilibrium, "law")
+        ),
+        SmoothSettled::Cycle { cycle, returns } => {
+            let verdict = match cycle.verdict {
+                Verdict::Stable => "stable",
+                Verdict::Unstable => "unstable",
+                Verdict::Neutral => "neutral",
+            };
+            let kind = if cycle.stick > 0.0 {
+                "stick-slip cycle"
+            } else {
+                "slip cycle"
+            };
+            let mut out = format!(
+                "{kind}: period T = {:.12}, stick {:.12} per period, largest x = {:.12} (on v = 0), \
+                 {verdict}, Floquet multiplier {:.9} (the trivial 1 removed)\n\
+                 found after {returns} returns to the section v = 0; shooting on it\n",
+                cycle.period, cycle.stick, cycle.x, cycle.multiplier
+            );
+            for e in &cycle.events {
+                out.push_str(&format!(
+                    "  W t = {:>16.12}  x = {:>16.12}  {:?} -> {:?}\n",
+                    e.phase, e.x, e.before, e.after
+                ));
+            }
+            out
+        }
+    }
+}
+
+/// A forced smooth-law periodic motion, in words.
+pub fn smooth_periodic(m: &crate::orbit::smooth::SmoothPeriodic) -> String {
+    let verdict = match m.verdict {
+        Verdict::Stable => "stable",
+        Verdict::Unstable => "unstable",
+        Verdict::Neutral => "neutral",
+    };
+    let kind = if m.sticks { "with stick" } else { "slip only" };
+    let mut out = format!(
+        "periodic motion of {} forcing period(s), {kind}: at W t = {:.12}, x = {:.12}, v = {:.12}; \
+         {verdict}, Floquet multipliers {}\nfound after {} forcing periods; shooting on the stroboscopic map\n",
+        m.periods,
+        m.phase,
+        m.x,
+        m.v,
+        eigenvalue_pair(&m.multipliers),
+        m.transient
+    );
+    for e in &m.events {
+        out.push_str(&format!(
+            "  W t = {:>16.12}  x = {:>16.12}  {:?} -> {:?}\n",
+            e.phase, e.x, e.before, e.after
+        ));
+    }
+    out
+}
+
 /// A text table of steady sliding along a parameter, then its changes of
 /// stability.
 pub fn equilibria_table(s: &Scan) -> String {

@@ -1,0 +1,56 @@
+//! The smooth law itself: what a simulation by the integrator settles to
+//! (`stickslip simulate` of a model with a smooth law and no scene).
+
+use pyo3::prelude::*;
+use stickslip::orbit::smooth::{simulate, SmoothOptions};
+use stickslip::{ModelVisitor, ParamSet, SmoothModel};
+
+use crate::command::{lookup, ModelSpec};
+use crate::failure::{Failure, Kind};
+
+/// The simulation of a smooth law at `set` from `start`.
+struct Settle {
+    set: Vec<(String, f64)>,
+    start: (f64, f64, f64),
+    periods: Option<u32>,
+}
+
+impl ModelVisitor for Settle {
+    type Output = Result<String, Failure>;
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        Some((|| {
+            let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
+            let p = base.with_pairs(M::identity(&base), &pairs)?;
+            let mut options = SmoothOptions::default();
+            if let Some(k) = self.periods {
+                if k == 0 {
+                    return Err(Failure::new(Kind::Input, "periods must be at least 1"));
+                }
+                options.max_returns = k;
+            }
+            let settled = simulate::<M>(p, self.start, options)?;
+            serde_json::to_string_pretty(&settled).map_err(Failure::from)
+        })())
+    }
+}
+
+/// `stickslip simulate --json` of the smooth law itself; `None` when the
+/// model is piecewise-linear (a compiled-in scene or a file's scene).
+#[pyfunction]
+#[pyo3(signature = (model, set, start, periods = None))]
+pub fn simulate_law(
+    py: Python<'_>,
+    model: ModelSpec,
+    set: Vec<(String, f64)>,
+    start: (f64, f64, f64),
+    periods: Option<u32>,
+) -> PyResult<Option<String>> {
+    let model = lookup(&model)?;
+    let request = Settle {
+        set,
+        start,
+        periods,
+    };
+    let out = py.detach(|| -> Result<_, Failure> { Ok(model.visit(request)?) })?;
+    Ok(out.transpose()?)
+}
