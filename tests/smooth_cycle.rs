@@ -349,3 +349,95 @@ fn simulate_settles_the_forced_smooth_law_on_a_fixed_point_of_its_period_map() {
         "{start:?} -> {end:?}"
     );
 }
+
+/// `sweep_law` of `examples/belt.ssm` along `vd`.
+fn law_sweep(from: f64, to: f64, count: usize) -> stickslip::study::law::LawSweep {
+    struct Visit(f64, f64, usize);
+    impl ModelVisitor for Visit {
+        type Output = stickslip::study::law::LawSweep;
+        fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+            Some(stickslip::study::law::sweep_law::<M>(base, "vd", self.0, self.1, self.2).unwrap())
+        }
+    }
+    belt_file().visit(Visit(from, to, count)).unwrap().unwrap()
+}
+
+#[test]
+fn the_law_swept_has_the_hopf_point_the_bistable_window_and_the_fold() {
+    let s = law_sweep(0.2, 3.0, 15);
+    let hopf = -0.5 * (0.1f64).ln();
+    assert_eq!(s.changes.len(), 1);
+    assert!((s.changes[0].change.at - hopf).abs() <= 1e-9 * hopf);
+    assert_eq!(s.stick_slip.len(), 1, "{:?}", s.stick_slip);
+    let fold = s.stick_slip[0].at;
+    assert!(s.stick_slip[0].below && fold > hopf);
+    for p in &s.points {
+        let e = p.rest.equilibrium.as_ref().expect("steady sliding");
+        let kinds: Vec<(bool, Verdict)> = p
+            .cycles
+            .iter()
+            .map(|c| (c.stick > 0.0, c.verdict))
+            .collect();
+        let v = p.rest.value;
+        if v < hopf {
+            // Unstable steady sliding inside the stable stick-slip cycle.
+            assert_eq!(e.verdict, Verdict::Unstable);
+            assert_eq!(kinds, [(true, Verdict::Stable)], "{v}");
+        } else if v < fold {
+            // The bistable window: the unstable slip cycle separates them.
+            assert_eq!(e.verdict, Verdict::Stable);
+            assert_eq!(
+                kinds,
+                [(false, Verdict::Unstable), (true, Verdict::Stable)],
+                "{v}"
+            );
+            assert!(p.cycles[0].x > e.x && p.cycles[0].multiplier > 1.0);
+        } else {
+            assert_eq!(e.verdict, Verdict::Stable);
+            assert!(kinds.is_empty(), "{v}: {kinds:?}");
+        }
+    }
+}
+
+#[test]
+fn the_slip_cycle_is_born_at_the_hopf_point_with_square_root_amplitude() {
+    // Subcritical: x − x* on the section grows as sqrt(vd − vd*).
+    let hopf = -0.5 * (0.1f64).ln();
+    let s = law_sweep(hopf + 0.0025, hopf + 0.01, 2);
+    let amplitude = |i: usize| {
+        let p = &s.points[i];
+        let slip = p
+            .cycles
+            .iter()
+            .find(|c| c.stick == 0.0)
+            .expect("the slip cycle");
+        slip.x - p.rest.equilibrium.as_ref().unwrap().x
+    };
+    let ratio = amplitude(1) / amplitude(0);
+    assert!((ratio - 2.0).abs() < 0.05, "{ratio}");
+}
+
+#[test]
+fn the_located_fold_of_the_law_is_confirmed_by_the_independent_integrator() {
+    let fold = law_sweep(1.7, 1.9, 3).stick_slip[0].at;
+    // From the stick's end the motion slips, turns on v = 0, and on its
+    // next swing reaches the belt speed again (sticks) below the fold and
+    // falls short above it.
+    for (vd, sticks) in [(fold * (1.0 - 1e-3), true), (fold * (1.0 + 1e-3), false)] {
+        let belt = Belt { vd };
+        let x_end = (Belt::MUS - belt.two_d() * vd) / Belt::C;
+        let (_, turn, _) = belt.slip_until([x_end, vd, 0.0], |y| y[1]);
+        let (_, _, _, top) = belt.slip_return(turn[0]);
+        assert_eq!(top >= vd, sticks, "{vd}: top {top}");
+    }
+    // And by the library's own simulation from far out.
+    with_belt(fold * (1.0 - 1e-3), |_, from| {
+        assert!(matches!(from(3.0, 0.0), SmoothSettled::Cycle { .. }));
+    });
+    with_belt(fold * (1.0 + 1e-3), |_, from| {
+        assert!(matches!(
+            from(3.0, 0.0),
+            SmoothSettled::SteadySliding { .. }
+        ));
+    });
+}

@@ -204,16 +204,22 @@ impl<C: WithModel> ModelVisitor for Piecewise<C> {
 /// Run `command` with the model `model` names: compiled in (`paper`, or
 /// `model::scene`) or loaded from a file.
 pub fn with_model<C: WithModel>(model: &ModelRef, command: C) -> Result<C::Output, CliError> {
-    model.visit(Piecewise(command))?.unwrap_or_else(|| {
-        Err(match model {
-            ModelRef::Name(name) => {
-                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
-            }
-            _ => CliError::SmoothFile {
-                model: model.to_string(),
-            },
-        })
-    })
+    model
+        .visit(Piecewise(command))?
+        .unwrap_or_else(|| Err(declined(model)))
+}
+
+/// Why a visitor declined `model`: a name that is not compiled in, or a
+/// smooth law where a piecewise model is needed.
+pub fn declined(model: &ModelRef) -> CliError {
+    match model {
+        ModelRef::Name(name) => {
+            CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
+        }
+        _ => CliError::SmoothFile {
+            model: model.to_string(),
+        },
+    }
 }
 
 /// A `--plot` path we can write a figure to: a figure format by extension

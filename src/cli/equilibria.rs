@@ -3,11 +3,10 @@
 //! a parameter with every change of stability located.
 
 use clap::Args;
-use stickslip::models::ModelRef;
 use stickslip::output::text::equilibria_table;
 use stickslip::study::equilibria::Request;
 
-use super::args::{Assignments, ModelArgs, ParamRange};
+use super::args::{declined, Assignments, ModelArgs, ParamRange};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -48,14 +47,7 @@ pub fn run(args: EquilibriaArgs) -> Result<Outcome, CliError> {
         set: set.pairs().to_vec(),
         range: range.map(|r| (r.name, r.from, r.to, r.count)),
     };
-    let scan = model.visit(request)?.ok_or_else(|| match &model {
-        ModelRef::Name(name) => {
-            CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
-        }
-        _ => CliError::SmoothFile {
-            model: model.to_string(),
-        },
-    })??;
+    let scan = model.visit(request)?.ok_or_else(|| declined(&model))??;
     Ok(Outcome::ok(if args.json {
         serde_json::to_string_pretty(&scan)?
     } else {

@@ -202,8 +202,11 @@ pub enum CliError {
     /// A smooth law's simulation.
     #[error(transparent)]
     Smooth(#[from] stickslip::orbit::smooth::SmoothError),
+    /// A sweep of a smooth law.
+    #[error(transparent)]
+    Law(#[from] stickslip::study::law::LawError),
     /// `--plot` or `--csv` of a smooth law's motion.
-    #[error("`{option}` draws a piecewise model's motion: for the smooth law `{model}`, print the text or `--json`, or give one of its scenes with `--scene`")]
+    #[error("`{option}` is written for a piecewise model: for the smooth law `{model}`, print the text or `--json`, or give one of its scenes with `--scene`")]
     SmoothOutput {
         /// The option given.
         option: &'static str,

@@ -54,7 +54,9 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Follow periodic motions along one parameter; locate every transition
     /// (grazing, stick onset and vanishing, passable onset, |λ| = 1) and what
-    /// lives beyond it; report coexisting motions.
+    /// lives beyond it; report coexisting motions. A smooth law (a model
+    /// without `--scene`): steady sliding and every cycle at each value,
+    /// the Hopf point and the stick-slip cycle's fold located.
     Sweep(sweep::SweepArgs),
     /// Measure the speed/accuracy trade of a smooth-law model: its N-piece
     /// predictions and the integrator at several tolerances against the law

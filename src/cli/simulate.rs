@@ -6,14 +6,15 @@ use clap::Args;
 use stickslip::dynamics::simulate::{SimOptions, Simulator};
 use stickslip::model::registry::ModelVisitor;
 use stickslip::model::smooth::SmoothModel;
-use stickslip::models::ModelRef;
 use stickslip::orbit::attractor::AttractorOptions;
 use stickslip::orbit::smooth::{simulate as simulate_smooth, SmoothOptions};
 use stickslip::output::settled::settle;
 use stickslip::output::text::smooth_settled;
 use stickslip::Model;
 
-use super::args::{check_plot_path, parse_numbers, Assignments, ModelArgs, OutputArgs, WithModel};
+use super::args::{
+    check_plot_path, declined, parse_numbers, Assignments, ModelArgs, OutputArgs, WithModel,
+};
 use super::error::CliError;
 use super::outcome::{Outcome, SAMPLES_PER_PERIOD};
 
@@ -55,16 +56,9 @@ pub fn run(args: SimulateArgs) -> Result<Outcome, CliError> {
         output: args.output,
         model: model.to_string(),
     };
-    model.visit(simulate)?.unwrap_or_else(|| {
-        Err(match &model {
-            ModelRef::Name(name) => {
-                CliError::UnknownModel(stickslip::models::UnknownModel { name: name.clone() })
-            }
-            _ => CliError::SmoothFile {
-                model: model.to_string(),
-            },
-        })
-    })
+    model
+        .visit(simulate)?
+        .unwrap_or_else(|| Err(declined(&model)))
 }
 
 struct Simulate {

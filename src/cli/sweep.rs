@@ -9,7 +9,12 @@ use stickslip::output::sweep_table;
 use stickslip::study::sweep::{sweep, SweepOptions};
 use stickslip::Model;
 
-use super::args::{check_plot_path, with_model, Assignments, ModelArgs, ParamRange, WithModel};
+use stickslip::model::registry::ModelVisitor;
+use stickslip::model::smooth::SmoothModel;
+use stickslip::output::text::law_sweep_table;
+use stickslip::study::law::sweep_law;
+
+use super::args::{check_plot_path, declined, Assignments, ModelArgs, ParamRange, WithModel};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -82,25 +87,81 @@ enum ViewArg {
 pub fn run(args: SweepArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
     let model = args.model.lookup("paper");
-    with_model(&model, SweepCmd { args })
+    let name = model.to_string();
+    model
+        .visit(SweepCmd { args, name })?
+        .unwrap_or_else(|| Err(declined(&model)))
 }
 
 struct SweepCmd {
     args: SweepArgs,
+    name: String,
 }
 
-impl WithModel for SweepCmd {
-    type Output = Outcome;
-    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
+impl ModelVisitor for SweepCmd {
+    type Output = Result<Outcome, CliError>;
+    fn piecewise<M: Model>(self, base: M::Params) -> Option<Self::Output> {
+        Some(WithModel::run::<M>(self, base))
+    }
+    fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
+        Some(self.law::<M>(base))
+    }
+}
+
+impl SweepCmd {
+    /// The `--set` pairs, the swept `--param` (left free by `--set`), and
+    /// the model's parameters with the pairs applied.
+    fn parameters<M: stickslip::FrictionOscillator>(
+        &self,
+        base: M::Params,
+    ) -> Result<(Assignments, ParamRange, M::Params), CliError> {
         let set = Assignments::parse(&self.args.set)?;
+        let range = ParamRange::parse(&self.args.param)?;
+        set.leave_free(&range.name, "--param")?;
+        let base = set.params::<M>(base)?;
+        Ok((set, range, base))
+    }
+
+    /// The smooth law itself: steady sliding and every cycle at each value,
+    /// the Hopf point and the stick-slip cycle's ends located.
+    fn law<M: SmoothModel>(self, base: M::Params) -> Result<Outcome, CliError> {
+        for (given, option) in [
+            (self.args.plot.is_some(), "--plot"),
+            (self.args.csv.is_some(), "--csv"),
+        ] {
+            if given {
+                return Err(CliError::SmoothOutput {
+                    option,
+                    model: self.name,
+                });
+            }
+        }
+        let (_, range, base) = self.parameters::<M>(base)?;
         let ParamRange {
             name,
             from,
             to,
             count,
-        } = ParamRange::parse(&self.args.param)?;
-        set.leave_free(&name, "--param")?;
-        let base = set.params::<M>(base)?;
+        } = range;
+        let sweep = sweep_law::<M>(base, &name, from, to, count)?;
+        Ok(Outcome::ok(if self.args.json {
+            serde_json::to_string_pretty(&sweep)?
+        } else {
+            law_sweep_table(&sweep)
+        }))
+    }
+}
+
+impl WithModel for SweepCmd {
+    type Output = Outcome;
+    fn run<M: Model>(self, base: M::Params) -> Result<Outcome, CliError> {
+        let (set, range, base) = self.parameters::<M>(base)?;
+        let ParamRange {
+            name,
+            from,
+            to,
+            count,
+        } = range;
         let opts = SweepOptions {
             starts: self.args.starts,
             every: self.args.every,

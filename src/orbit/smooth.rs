@@ -146,6 +146,10 @@ pub struct ReturnMap<M: SmoothModel> {
     belt: f64,
     /// The rest position `x*` (the section's end: a cycle of no amplitude).
     rest: f64,
+    /// Where every stick ends: `−2 d V − c x = ∓ as` (carried along by the belt).
+    stick_end: f64,
+    /// The natural frequency `sqrt(c)`.
+    omega: f64,
     /// The longest time allowed between two returns.
     horizon: f64,
 }
@@ -158,11 +162,15 @@ impl<M: SmoothModel> ReturnMap<M> {
         let integrator = Integrator::<M>::new(p, rtol)?;
         let belt = integrator.belt();
         let omega = osc.stiffness.abs().sqrt().max(1e-300);
+        let bound = M::static_bound(&p);
+        let stick_end = (bound * belt.signum() - 2.0 * osc.damping * belt) / osc.stiffness;
         Ok(Self {
             integrator,
             frequency: osc.frequency,
             belt,
             rest,
+            stick_end,
+            omega,
             horizon: 1e4 * std::f64::consts::TAU / omega,
         })
     }
@@ -262,12 +270,19 @@ impl<M: SmoothModel> ReturnMap<M> {
         if fb.abs() > 1e-10 * scale(b) || b - self.rest <= 1e-6 * scale(b) {
             return Ok(None);
         }
-        let (r, period) = self.apply(b)?;
+        self.finish(b).map(Some)
+    }
+
+    /// The cycle through the section point `x` (a fixed point of `P`): its
+    /// period, stick, events and multiplier.
+    fn finish(&self, x: f64) -> Result<SmoothCycle, SmoothError> {
+        let (r, period) = self.apply(x)?;
         let multiplier = if r.stick > 0.0 {
             0.0
         } else {
-            let h = 1e-5 * scale(b);
-            (self.map(b + h)? - self.map(b - h)?) / (2.0 * h)
+            // Differences inside the section (x > x*).
+            let h = (1e-5 * (1.0 + x.abs())).min(0.1 * (x - self.rest));
+            (self.map(x + h)? - self.map(x - h)?) / (2.0 * h)
         };
         let verdict = if multiplier.abs() < 1.0 {
             Verdict::Stable
@@ -276,14 +291,137 @@ impl<M: SmoothModel> ReturnMap<M> {
         } else {
             Verdict::Neutral
         };
-        Ok(Some(SmoothCycle {
-            x: b,
+        Ok(SmoothCycle {
+            x,
             period,
             stick: r.stick,
             multiplier,
             verdict,
             events: r.events,
-        }))
+        })
+    }
+
+    /// The stick-slip cycle, if there is one. In one degree of freedom
+    /// every stick ends at the same state (`v = V`, the spring and damper
+    /// at the static bound), so a stick-slip cycle passes through it and
+    /// crosses the section once: it exists exactly when the motion from the
+    /// stick's end sticks again before its second return to the section.
+    pub fn stick_slip(&self) -> Result<Option<SmoothCycle>, SmoothError> {
+        // Just before the end of a stick: the integrator ends it exactly.
+        let start = State {
+            phase: 0.0,
+            x: self.stick_end - 1e-9 * self.belt.signum() * (1.0 + self.stick_end.abs()),
+            v: self.belt,
+            side: Side::Stick,
+        };
+        let first = match self.next(start)? {
+            Ok(r) => r.state.x,
+            Err(_) => return Ok(None),
+        };
+        let (r, _) = match self.apply(first) {
+            Ok(r) => r,
+            Err(SmoothError::NoReturn { .. }) => return Ok(None),
+            Err(e) => return Err(e),
+        };
+        if r.stick == 0.0 {
+            return Ok(None);
+        }
+        // After the stick the path is the one from `first`: `P` is constant.
+        self.finish(r.state.x).map(Some)
+    }
+
+    /// Every cycle through the section: the stick-slip cycle, and the
+    /// slip cycles between the equilibrium and it (or, without it, out to
+    /// a few times the stick's end from the rest position), from the sign
+    /// changes of `P(x) − x` on a grid that crowds towards both ends (where
+    /// cycles are born at a Hopf point and meet at a fold), each refined by
+    /// bracketed secant steps. Sorted by `x`.
+    pub fn cycles(&self) -> Result<Vec<SmoothCycle>, SmoothError> {
+        let outer = self.stick_slip()?;
+        let rest = self.rest;
+        let top = match &outer {
+            Some(c) => c.x,
+            None => rest + 4.0 * ((self.stick_end - rest).abs() + self.belt.abs() / self.omega),
+        };
+        let span = top - rest;
+        let mut fractions: Vec<f64> = Vec::new();
+        for k in (1..=8).rev() {
+            fractions.push(10f64.powf(-(k as f64) / 2.0));
+        }
+        fractions.extend((1..20).map(|i| 0.05 * i as f64));
+        for k in 2..=8 {
+            fractions.push(1.0 - 10f64.powf(-(k as f64) / 2.0));
+        }
+        let mut samples: Vec<(f64, f64)> = Vec::new();
+        for f in fractions {
+            let x = rest + f * span;
+            match self.map(x) {
+                Ok(p) => samples.push((x, p - x)),
+                Err(SmoothError::NoReturn { .. }) => {}
+                Err(e) => return Err(e),
+            }
+        }
+        let mut found: Vec<SmoothCycle> = Vec::new();
+        for w in samples.windows(2) {
+            let ((a, fa), (b, fb)) = (w[0], w[1]);
+            if fa.signum() == fb.signum() || fa == 0.0 || fb == 0.0 {
+                continue;
+            }
+            if let Some(x) = self.root(a, fa, b, fb)? {
+                found.push(self.finish(x)?);
+            }
+        }
+        if let Some(c) = outer {
+            let scale = 1.0 + c.x.abs();
+            found.retain(|s| (s.x - c.x).abs() > 1e-8 * scale);
+            found.push(c);
+        }
+        found.sort_by(|a, b| a.x.total_cmp(&b.x));
+        // A root on a sample point ends two brackets: one cycle.
+        found.dedup_by(|a, b| (a.x - b.x).abs() <= 1e-8 * (1.0 + b.x.abs()));
+        Ok(found)
+    }
+
+    /// The root of `P(x) − x` in `[a, b]` (values `fa`, `fb` of opposite
+    /// signs) by regula falsi (Illinois); `None` if the map fails inside.
+    fn root(
+        &self,
+        mut a: f64,
+        mut fa: f64,
+        mut b: f64,
+        mut fb: f64,
+    ) -> Result<Option<f64>, SmoothError> {
+        let mut last = 0i32;
+        for _ in 0..100 {
+            let c = (a * fb - b * fa) / (fb - fa);
+            let c = if c > a.min(b) && c < a.max(b) {
+                c
+            } else {
+                0.5 * (a + b)
+            };
+            let fc = match self.map(c) {
+                Ok(p) => p - c,
+                Err(SmoothError::NoReturn { .. }) => return Ok(None),
+                Err(e) => return Err(e),
+            };
+            if fc == 0.0 || (b - a).abs() <= 1e-14 * (1.0 + c.abs()) {
+                return Ok(Some(c));
+            }
+            if fc.signum() == fa.signum() {
+                (a, fa) = (c, fc);
+                if last == 1 {
+                    fb *= 0.5;
+                }
+                last = 1;
+            } else {
+                (b, fb) = (c, fc);
+                if last == -1 {
+                    fa *= 0.5;
+                }
+                last = -1;
+            }
+        }
+        Ok(Some(0.5 * (a + b)))
     }
 }
 

@@ -371,6 +371,67 @@ pub fn smooth_periodic(m: &crate::orbit::smooth::SmoothPeriodic) -> String {
     out
 }
 
+/// A smooth law along a parameter: one line per grid value (steady
+/// sliding, then every cycle), then the located changes.
+pub fn law_sweep_table(s: &crate::study::law::LawSweep) -> String {
+    let mut out = format!(
+        "{} (the law itself) along {}: steady sliding and every cycle on the section v = 0\n",
+        s.model, s.param
+    );
+    out.push_str(&format!(
+        "{:>14}  {:<10}  {:>16}  cycles (x on v = 0, period T, stick, multiplier, stability)\n",
+        s.param, "rest", "x*"
+    ));
+    for p in &s.points {
+        let (verdict, x) = match &p.rest.equilibrium {
+            Some(e) => (
+                match e.verdict {
+                    Verdict::Stable => "stable",
+                    Verdict::Unstable => "unstable",
+                    Verdict::Neutral => "neutral",
+                },
+                format!("{:.12}", e.x),
+            ),
+            None => ("none", "-".to_string()),
+        };
+        let cycles: Vec<String> = p
+            .cycles
+            .iter()
+            .map(|c| {
+                let kind = if c.stick > 0.0 { "stick-slip" } else { "slip" };
+                let v = match c.verdict {
+                    Verdict::Stable => "stable",
+                    Verdict::Unstable => "unstable",
+                    Verdict::Neutral => "neutral",
+                };
+                format!(
+                    "{kind} x={:.9} T={:.9} stick={:.9} mu={:.6} {v}",
+                    c.x, c.period, c.stick, c.multiplier
+                )
+            })
+            .collect();
+        let cycles = if cycles.is_empty() {
+            "none".to_string()
+        } else {
+            cycles.join("; ")
+        };
+        out.push_str(&format!(
+            "{:>14.9}  {verdict:<10}  {x:>16}  {cycles}\n",
+            p.rest.value
+        ));
+    }
+    for c in &s.changes {
+        out.push_str(&format!(
+            "change of stability at {} = {}: {}\n",
+            s.param, c.change.at, c.what
+        ));
+    }
+    for e in &s.stick_slip {
+        out.push_str(&format!("at {} = {}: {}\n", s.param, e.at, e.what));
+    }
+    out
+}
+
 /// A text table of steady sliding along a parameter, then its changes of
 /// stability.
 pub fn equilibria_table(s: &Scan) -> String {

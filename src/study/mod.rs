@@ -6,6 +6,7 @@
 //! * [`basins`] — basins of attraction and basin stability, parallel and resumable;
 //! * [`diagram`] — the brute-force orbit diagram, swept up and down, with exponents and branches;
 //! * [`equilibria`] — steady sliding of an unforced model along a parameter, with its changes of stability located;
+//! * [`law`] — a smooth law itself along a parameter: steady sliding and every cycle, the Hopf point and the stick-slip cycle's fold located;
 //! * [`trade`] — the speed/accuracy trade of a smooth law's N-piece models;
 //! * `record` — the resumable record file that `map` and `basins` keep;
 //! * `progress` — how `map` and `basins` report their finished points (a bar, a shared counter).
@@ -32,6 +33,7 @@ pub mod basins;
 pub mod curves;
 pub mod diagram;
 pub mod equilibria;
+pub mod law;
 pub mod map;
 mod progress;
 pub(crate) mod record;
