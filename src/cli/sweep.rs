@@ -136,14 +136,8 @@ impl SweepCmd {
                 });
             }
         }
-        let (_, range, base) = self.parameters::<M>(base)?;
-        let ParamRange {
-            name,
-            from,
-            to,
-            count,
-        } = range;
-        let sweep = sweep_law::<M>(base, &name, from, to, count)?;
+        let (_, r, base) = self.parameters::<M>(base)?;
+        let sweep = sweep_law::<M>(base, &r.name, r.from, r.to, r.count)?;
         Ok(Outcome::ok(if self.args.json {
             serde_json::to_string_pretty(&sweep)?
         } else {

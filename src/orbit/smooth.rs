@@ -131,6 +131,18 @@ fn side_of(v: f64, belt: f64) -> Side {
     }
 }
 
+/// Stable inside the unit circle, unstable outside, neutral on it: by the
+/// largest multiplier's modulus.
+fn verdict_of_modulus(largest: f64) -> Verdict {
+    if largest < 1.0 {
+        Verdict::Stable
+    } else if largest > 1.0 {
+        Verdict::Unstable
+    } else {
+        Verdict::Neutral
+    }
+}
+
 /// One return to the section: the state, the time stuck and the events.
 struct Return {
     state: State,
@@ -284,13 +296,7 @@ impl<M: SmoothModel> ReturnMap<M> {
             let h = (1e-5 * (1.0 + x.abs())).min(0.1 * (x - self.rest));
             (self.map(x + h)? - self.map(x - h)?) / (2.0 * h)
         };
-        let verdict = if multiplier.abs() < 1.0 {
-            Verdict::Stable
-        } else if multiplier.abs() > 1.0 {
-            Verdict::Unstable
-        } else {
-            Verdict::Neutral
-        };
+        let verdict = verdict_of_modulus(multiplier.abs());
         Ok(SmoothCycle {
             x,
             period,
@@ -567,12 +573,11 @@ pub fn settle_forced<M: SmoothModel>(
             continue;
         };
         let mut events = Vec::new();
-        let end = integrator.run(state, state.phase + q as f64 * std::f64::consts::TAU, |e| {
+        integrator.run(state, state.phase + q as f64 * std::f64::consts::TAU, |e| {
             let mut e = *e;
             e.phase -= state.phase;
             events.push(e);
         })?;
-        debug_assert!(end.x.is_finite());
         let sticks = events.iter().any(|e| e.after == Side::Stick);
         let h = 1e-6 * scale(&state);
         let mut jac = Matrix2::zeros();
@@ -600,14 +605,7 @@ pub fn settle_forced<M: SmoothModel>(
             [[eig[0].re, eig[0].im], [eig[1].re, eig[1].im]]
         };
         let norm = |m: [f64; 2]| m[0].hypot(m[1]);
-        let largest = norm(multipliers[0]).max(norm(multipliers[1]));
-        let verdict = if largest < 1.0 {
-            Verdict::Stable
-        } else if largest > 1.0 {
-            Verdict::Unstable
-        } else {
-            Verdict::Neutral
-        };
+        let verdict = verdict_of_modulus(norm(multipliers[0]).max(norm(multipliers[1])));
         return Ok(SmoothPeriodic {
             periods: q,
             phase: state.phase.rem_euclid(std::f64::consts::TAU),

@@ -317,11 +317,7 @@ pub fn smooth_settled(s: &crate::orbit::smooth::SmoothSettled) -> String {
             steady_sliding_line(equilibrium, "law")
         ),
         SmoothSettled::Cycle { cycle, returns } => {
-            let verdict = match cycle.verdict {
-                Verdict::Stable => "stable",
-                Verdict::Unstable => "unstable",
-                Verdict::Neutral => "neutral",
-            };
+            let verdict = verdict_word(cycle.verdict);
             let kind = if cycle.stick > 0.0 {
                 "stick-slip cycle"
             } else {
@@ -333,24 +329,37 @@ pub fn smooth_settled(s: &crate::orbit::smooth::SmoothSettled) -> String {
                  found after {returns} returns to the section v = 0; shooting on it\n",
                 cycle.period, cycle.stick, cycle.x, cycle.multiplier
             );
-            for e in &cycle.events {
-                out.push_str(&format!(
-                    "  W t = {:>16.12}  x = {:>16.12}  {:?} -> {:?}\n",
-                    e.phase, e.x, e.before, e.after
-                ));
-            }
+            out.push_str(&event_lines(&cycle.events));
             out
         }
     }
 }
 
-/// A forced smooth-law periodic motion, in words.
-pub fn smooth_periodic(m: &crate::orbit::smooth::SmoothPeriodic) -> String {
-    let verdict = match m.verdict {
+/// A stability verdict in one word.
+fn verdict_word(v: Verdict) -> &'static str {
+    match v {
         Verdict::Stable => "stable",
         Verdict::Unstable => "unstable",
         Verdict::Neutral => "neutral",
-    };
+    }
+}
+
+/// An integrated motion's events at the belt speed, a line each.
+fn event_lines(events: &[crate::dynamics::integrate::BeltEvent]) -> String {
+    events
+        .iter()
+        .map(|e| {
+            format!(
+                "  W t = {:>16.12}  x = {:>16.12}  {:?} -> {:?}\n",
+                e.phase, e.x, e.before, e.after
+            )
+        })
+        .collect()
+}
+
+/// A forced smooth-law periodic motion, in words.
+pub fn smooth_periodic(m: &crate::orbit::smooth::SmoothPeriodic) -> String {
+    let verdict = verdict_word(m.verdict);
     let kind = if m.sticks { "with stick" } else { "slip only" };
     let mut out = format!(
         "periodic motion of {} forcing period(s), {kind}: at W t = {:.12}, x = {:.12}, v = {:.12}; \
@@ -362,12 +371,7 @@ pub fn smooth_periodic(m: &crate::orbit::smooth::SmoothPeriodic) -> String {
         eigenvalue_pair(&m.multipliers),
         m.transient
     );
-    for e in &m.events {
-        out.push_str(&format!(
-            "  W t = {:>16.12}  x = {:>16.12}  {:?} -> {:?}\n",
-            e.phase, e.x, e.before, e.after
-        ));
-    }
+    out.push_str(&event_lines(&m.events));
     out
 }
 
@@ -384,14 +388,7 @@ pub fn law_sweep_table(s: &crate::study::law::LawSweep) -> String {
     ));
     for p in &s.points {
         let (verdict, x) = match &p.rest.equilibrium {
-            Some(e) => (
-                match e.verdict {
-                    Verdict::Stable => "stable",
-                    Verdict::Unstable => "unstable",
-                    Verdict::Neutral => "neutral",
-                },
-                format!("{:.12}", e.x),
-            ),
+            Some(e) => (verdict_word(e.verdict), format!("{:.12}", e.x)),
             None => ("none", "-".to_string()),
         };
         let cycles: Vec<String> = p
@@ -399,11 +396,7 @@ pub fn law_sweep_table(s: &crate::study::law::LawSweep) -> String {
             .iter()
             .map(|c| {
                 let kind = if c.stick > 0.0 { "stick-slip" } else { "slip" };
-                let v = match c.verdict {
-                    Verdict::Stable => "stable",
-                    Verdict::Unstable => "unstable",
-                    Verdict::Neutral => "neutral",
-                };
+                let v = verdict_word(c.verdict);
                 format!(
                     "{kind} x={:.9} T={:.9} stick={:.9} mu={:.6} {v}",
                     c.x, c.period, c.stick, c.multiplier
