@@ -51,6 +51,8 @@ figure sweep_shaw.png s sweep --model coulomb --param W=0.33:0.42:10 \
 figure sweep_ns.png s sweep --model paper --param W=10.3:11.3:51 --set Q0=100,mu3=4.4 --plot "$out/sweep_ns.png"
 figure sweep_kinds.png s sweep --model paper --param W=9.2:11.3:43 --set Q0=80,mu3=4.4 --plot "$out/sweep_kinds.png"
 # Self-excited oscillations: the belt's cycles and steady sliding, and their basins.
+figure belt_law.png s sweep --model-file examples/belt.ssm --param vd=0.2:3:29 \
+    --plot "$out/belt_law.png"
 figure belt_frc.png s sweep --model-file examples/belt.ssm --scene pl16 --param vd=0.2:3:29 \
     --view frc --plot "$out/belt_frc.png"
 figure belt_map.png s map --model-file examples/belt.ssm --scene pl16 --x vd=0.2:3:57 \

@@ -22,6 +22,7 @@ use stickslip::orbit::equilibrium::{
     eigenvalues, steady_sliding, steady_sliding_smooth, EquilibriumError, Loss, Seat, Verdict,
 };
 use stickslip::study::equilibria::{scan, scan_smooth, Scan};
+use stickslip::study::trade::MeasureThresholds;
 use stickslip::{Model, ModelVisitor, ParamSet, SmoothModel};
 
 fn belt() -> PathBuf {
@@ -204,8 +205,9 @@ impl ModelVisitor for Scanned {
 
 /// A piecewise law loses stability where the equilibrium crosses a
 /// breakpoint: located there to the rounding of the boundary's velocity,
-/// stable on one side and not on the other. As the pieces refine, the
-/// threshold approaches the law's own Hopf point.
+/// stable on one side and not on the other. The scenes free the belt speed
+/// and the damping, so a breakpoint sits where steady sliding changes
+/// stability at the defaults: every scene has the law's own threshold.
 #[test]
 fn a_piecewise_law_loses_stability_on_a_breakpoint() {
     let exact = -0.5 * (0.1f64).ln(); // belt.ssm: 2ζ√c v0 m / ((μs − μd) FN) = 0.1
@@ -250,8 +252,85 @@ fn a_piecewise_law_loses_stability_on_a_breakpoint() {
         ));
         errors.push((c.at - exact).abs() / exact);
     }
-    // Closer with the finest scenes than with the coarsest.
-    assert!(errors[3] < errors[0], "{errors:?}");
+    assert!(
+        errors.iter().all(|&e| e <= 64.0 * f64::EPSILON),
+        "{errors:?}"
+    );
+}
+
+/// `trade` of an unforced model says there is no forced motion to trade and
+/// what to run instead; `trade --threshold` gives each scene's threshold
+/// against the law's, in text and JSON, and refuses a grid of no values.
+#[test]
+fn trade_measures_the_threshold_of_an_unforced_model() {
+    let out = on_belt("trade", &[]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("unforced") && err.contains("--threshold"),
+        "{err}"
+    );
+    let out = on_belt(
+        "trade",
+        &["--threshold", "vd=0.2:3:15", "--pieces", "8,16", "--json"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let exact = -0.5 * (0.1f64).ln();
+    let law = json["law"][0].as_f64().expect("the law's threshold");
+    assert!((law - exact).abs() <= 1e-12 * exact, "{json}");
+    for row in json["rows"].as_array().expect("rows") {
+        let at = row["at"][0].as_f64().expect("a threshold");
+        assert!((at - exact).abs() <= 64.0 * f64::EPSILON * exact, "{row}");
+    }
+    assert_eq!(json["exact"], true);
+    let text = String::from_utf8_lossy(
+        &on_belt("trade", &["--threshold", "vd=0.2:3:15", "--pieces", "8"]).stdout,
+    )
+    .to_string();
+    assert!(text.contains("the law's threshold to rounding"), "{text}");
+    let out = on_belt("trade", &["--threshold", "vd=0.2:3:0"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("count"));
+}
+
+/// Away from the defaults (a damping whose threshold is no breakpoint), a
+/// scene's threshold lies on a breakpoint within a piece of the law's: the
+/// error falls with the pieces, at first order, as `trade --threshold`
+/// measures it. The law's threshold is the closed form `-v0/2 ln(2 zeta)`
+/// (belt.ssm: `(mus - mud) FN / (m v0) = 1`, `c = 1`).
+#[test]
+fn a_piecewise_threshold_converges_at_first_order_away_from_the_defaults() {
+    let model = ModelRef::File {
+        path: belt(),
+        scene: None,
+    };
+    for zeta in [0.03, 0.08] {
+        let set = [("zeta".to_string(), zeta)];
+        let measure = MeasureThresholds {
+            model: &model,
+            set: &set,
+            range: ("vd".to_string(), 0.2, 3.0, 15),
+            pieces: &[8, 16, 32, 64],
+        };
+        let t = model
+            .visit(measure)
+            .expect("loads")
+            .expect("a smooth law")
+            .expect("measured");
+        let exact = -0.5 * (2.0 * zeta).ln();
+        assert_eq!(t.law.len(), 1);
+        assert!((t.law[0] - exact).abs() <= 1e-12 * exact, "{:?}", t.law);
+        assert!(!t.exact);
+        let errors: Vec<f64> = t.rows.iter().map(|r| r.error).collect();
+        assert!(errors[3] < errors[0] / 5.0, "zeta {zeta}: {errors:?}");
+        let order = t.order.expect("an order");
+        assert!((0.8..1.5).contains(&order), "zeta {zeta}: order {order}");
+    }
 }
 
 /// The Coulomb belt oscillator without damping or forcing: the stick ends at
@@ -461,7 +540,7 @@ fn a_sweep_follows_the_cycles_and_the_fold_between_them() {
         });
     assert!(slip.points.iter().all(|q| !q.stable), "{slip:?}");
     assert!(slip.points.iter().all(|q| q.value <= fold + 1e-9));
-    // An unstable slip cycle at a grid value of the bistable window.
+    // That unstable slip cycle at a grid value of the bistable window.
     let at = sweep
         .points
         .iter()
@@ -469,10 +548,10 @@ fn a_sweep_follows_the_cycles_and_the_fold_between_them() {
             let m = g
                 .motions
                 .iter()
-                .find(|m| !m.stable && !sticks(&m.structure))?;
+                .find(|m| !m.stable && m.structure == slip.structure)?;
             Some((g.value, m.clone()))
         })
-        .expect("an unstable slip cycle at a grid value");
+        .expect("the unstable slip cycle at a grid value");
 
     struct Check {
         fold: f64,
@@ -920,9 +999,78 @@ fn describe_names_steady_sliding() {
     assert_eq!(json["steady_sliding"]["verdict"], "stable");
     let text = run(&["--model-file", file, "--scene", "pl16", "--set", "vd=1.5"]);
     assert!(
-        text.contains("steady sliding at x = 0.527528324852"),
+        text.contains(&format!("steady sliding at x = {x:.12}")),
         "{text}"
     );
     let forced = run(&["--model", "paper", "--json"]);
     assert!(!forced.contains("steady_sliding"), "{forced}");
+}
+
+/// `sweep` of the belt law itself writes its CSV (one row per motion, the
+/// numbers of its JSON to the last bit) and its figure; `--no-unstable`
+/// leaves out the unstable slip cycles and keeps steady sliding.
+#[test]
+fn a_law_sweep_writes_its_csv_and_figure() {
+    let dir = std::env::temp_dir().join(format!("stickslip-law-sweep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let (csv, svg) = (dir.join("law.csv"), dir.join("law.svg"));
+    let range = ["--param", "vd=0.2:3:8"];
+    let out = on_belt(
+        "sweep",
+        &[
+            range[0],
+            range[1],
+            "--csv",
+            csv.to_str().expect("path"),
+            "--plot",
+            svg.to_str().expect("path"),
+            "--json",
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let text = std::fs::read_to_string(&csv).expect("csv written");
+    let mut rows = text.lines();
+    assert_eq!(
+        rows.next(),
+        Some("vd,kind,x,stable,period,stick,multiplier")
+    );
+    let rows: Vec<Vec<&str>> = rows.map(|r| r.split(',').collect()).collect();
+    let mut expected = Vec::new();
+    for p in json["points"].as_array().expect("points") {
+        let value = p["value"].as_f64().expect("value");
+        if let Some(x) = p["equilibrium"]["x"].as_f64() {
+            expected.push((value, "steady_sliding".to_string(), x));
+        }
+        for c in p["cycles"].as_array().expect("cycles") {
+            let kind = if c["stick"].as_f64() > Some(0.0) {
+                "stick_slip"
+            } else {
+                "slip"
+            };
+            expected.push((value, kind.to_string(), c["x"].as_f64().expect("x")));
+        }
+    }
+    assert_eq!(rows.len(), expected.len());
+    for (row, (value, kind, x)) in rows.iter().zip(&expected) {
+        assert_eq!(row[0].parse::<f64>().ok(), Some(*value));
+        assert_eq!(row[1], kind);
+        assert_eq!(row[2].parse::<f64>().ok(), Some(*x));
+    }
+    assert!(expected.iter().any(|e| e.1 == "slip"));
+    let svg_text = std::fs::read_to_string(&svg).expect("figure written");
+    assert!(svg_text.contains("<svg") && svg_text.contains("Hopf"));
+    let out = on_belt("sweep", &[range[0], range[1], "--no-unstable", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    for p in json["points"].as_array().expect("points") {
+        assert!(p["equilibrium"]["x"].is_f64());
+        for c in p["cycles"].as_array().expect("cycles") {
+            assert_eq!(c["verdict"], "stable", "{c}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

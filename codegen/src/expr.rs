@@ -337,6 +337,20 @@ impl Graph {
         dep[id.0 as usize]
     }
 
+    /// Whether `id` depends on any run-time parameter.
+    pub fn depends_on_params(&self, id: Id) -> bool {
+        let n = id.0 as usize + 1;
+        let mut dep = vec![false; n];
+        for i in 0..n {
+            dep[i] = match self.nodes[i] {
+                Node::Param(_) => true,
+                Node::Const(_) | Node::Var(_) => false,
+                node => children(node).iter().any(|c| dep[c.0 as usize]),
+            };
+        }
+        dep[id.0 as usize]
+    }
+
     /// The exact derivative of `id` with respect to variable `var`,
     /// memoized, built in the same graph (so it shares subexpressions with
     /// the function itself).

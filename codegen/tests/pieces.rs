@@ -101,3 +101,117 @@ fn pieces_interpolate_the_law_at_any_parameter_values() {
     }
     assert_eq!(checked, 3 * (2 * 7));
 }
+
+/// `models/stribeck.ssm` with the scenes `extra` added.
+fn with_scenes(extra: &str) -> stickslip_codegen::Model {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../models/stribeck.ssm");
+    let text = std::fs::read_to_string(path).expect("models/stribeck.ssm");
+    let end = text.rfind('}').expect("a model");
+    let source = format!("{}    {extra}\n}}\n", &text[..end]);
+    model_from_tokens(tokenize(&source).expect("tokens")).expect("a valid model")
+}
+
+/// The offsets `|v - V|` of the breakpoints below the belt speed of scene
+/// `name`, at the defaults, ascending.
+fn offsets_below(model: &stickslip_codegen::Model, name: &str) -> Vec<f64> {
+    let expanded = expand(model)
+        .map_err(|d| format!("{d:?}"))
+        .expect("expands");
+    let scene = expanded
+        .scenes
+        .iter()
+        .find(|s| s.module == name)
+        .expect("the scene");
+    let inst = &scene.instance;
+    let free: Vec<f64> = inst.free.iter().map(|&i| model.params[i].default).collect();
+    let g = &inst.lowered.graph;
+    let belt = model
+        .params
+        .iter()
+        .find(|p| p.name == "V")
+        .expect("V")
+        .default;
+    let mut u: Vec<f64> = inst
+        .lowered
+        .boundary_velocity
+        .iter()
+        .map(|&b| belt - g.eval(b, &free, &[]))
+        .filter(|&u| u > 0.0)
+        .collect();
+    u.sort_by(f64::total_cmp);
+    u
+}
+
+/// The law of `stribeck.ssm` below the belt speed, at `u = V - v`, in closed
+/// form: `f'(v) = -(mus - muk) g / vs exp(-u / vs) + sigma`, and the
+/// cumulative density of de Boor's rule, `∫ sqrt|f''|` from 0 to `u`, up to
+/// a factor: `1 - exp(-u / (2 vs))`.
+struct Below {
+    d: f64,
+    fall: f64,
+    vs: f64,
+    sigma: f64,
+}
+
+impl Below {
+    fn new(model: &stickslip_codegen::Model) -> Self {
+        let p = |n: &str| model.params.iter().find(|p| p.name == n).expect(n).default;
+        Below {
+            d: p("d"),
+            fall: (p("mus") - p("muk")) * p("g") / p("vs"),
+            vs: p("vs"),
+            sigma: p("sigma"),
+        }
+    }
+    /// Where `2 d + f'` vanishes.
+    fn hopf(&self) -> f64 {
+        self.vs * (self.fall / (2.0 * self.d + self.sigma)).ln()
+    }
+    fn level(&self, u: f64) -> f64 {
+        1.0 - (-u / (2.0 * self.vs)).exp()
+    }
+    fn offset(&self, level: f64) -> f64 {
+        -2.0 * self.vs * (1.0 - level).ln()
+    }
+}
+
+/// Breakpoints equidistribute `∫ sqrt|f''|` (de Boor's rule, against its
+/// closed form); a scene that frees the damping can move steady sliding's
+/// stability, and gets a breakpoint exactly where `2 d + f'` vanishes at the
+/// defaults, the rest equidistributed on either side of it (three of the
+/// four pieces below it, where the density is). A scene that frees only the
+/// forcing keeps the plain rule.
+#[test]
+fn a_breakpoint_sits_where_steady_sliding_changes_stability() {
+    let model = with_scenes(
+        "scene damped { free: d, W; pieces: 8; }\n    scene forced { free: W, Q0; pieces: 8; }",
+    );
+    let law = Below::new(&model);
+    let total = law.level(8.0);
+    // Free only the forcing: u_j at levels j/4 of the total.
+    let plain = offsets_below(&model, "forced");
+    assert_eq!(plain.len(), 3);
+    for (j, &u) in plain.iter().enumerate() {
+        let expected = law.offset(total * (j + 1) as f64 / 4.0);
+        assert!((u - expected).abs() <= 2e-3 * expected, "{plain:?}");
+    }
+    // Free the damping: a breakpoint at the stability change.
+    let pinned = offsets_below(&model, "damped");
+    let hopf = law.hopf();
+    assert_eq!(pinned.len(), 3);
+    assert!(
+        (pinned[2] - hopf).abs() <= 4.0 * f64::EPSILON * hopf,
+        "{pinned:?} against {hopf}"
+    );
+    for (j, &u) in pinned[..2].iter().enumerate() {
+        let expected = law.offset(law.level(hopf) * (j + 1) as f64 / 3.0);
+        assert!((u - expected).abs() <= 2e-3 * expected, "{pinned:?}");
+    }
+    // No piece straddles the change: steady sliding on the piece just
+    // inside it (the secant slope in `v`) is unstable, just outside stable.
+    let f = |u: f64| -law.fall * law.vs * (-u / law.vs).exp() - law.sigma * u;
+    let secant = |a: f64, b: f64| -(f(b) - f(a)) / (b - a);
+    let inside = 2.0 * law.d + secant(pinned[1], hopf);
+    let outside = 2.0 * law.d + secant(hopf, 8.0);
+    assert!(inside < 0.0 && outside > 0.0, "{inside} {outside}");
+}

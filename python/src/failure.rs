@@ -112,6 +112,17 @@ impl From<stickslip::orbit::smooth::SmoothError> for Failure {
     }
 }
 
+impl From<stickslip::study::law::LawError> for Failure {
+    fn from(e: stickslip::study::law::LawError) -> Self {
+        use stickslip::study::law::LawError;
+        match e {
+            LawError::Params(e) => e.into(),
+            LawError::At { .. } => Self::new(Kind::Simulation, e),
+            LawError::Forced(_) | LawError::Empty => Self::new(Kind::Input, e),
+        }
+    }
+}
+
 impl From<OrbitError> for Failure {
     fn from(e: OrbitError) -> Self {
         let kind = match &e {

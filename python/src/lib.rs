@@ -34,6 +34,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(catalogue::check, m)?)?;
     m.add_function(wrap_pyfunction!(motion::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(law::simulate_law, m)?)?;
+    m.add_function(wrap_pyfunction!(law::sweep_law, m)?)?;
     m.add_function(wrap_pyfunction!(motion::orbit, m)?)?;
     m.add_class::<motion::Trajectory>()?;
     m.add_function(wrap_pyfunction!(diagram::orbit_diagram, m)?)?;

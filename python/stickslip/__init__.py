@@ -11,7 +11,7 @@ basins of friction oscillators, computed in process by the Rust library.
 from __future__ import annotations
 
 from ._model import Model, Param, check, models
-from ._results import Description, Equilibria, History, LawMotion, Motion, OrbitDiagram, Result, Sweep
+from ._results import Description, Equilibria, History, LawMotion, LawSweep, Motion, OrbitDiagram, Result, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import (
     InadmissibleError,
@@ -28,6 +28,7 @@ from .errors import (
 
 __all__ = [
     "LawMotion",
+    "LawSweep",
     "Model",
     "Param",
     "models",

@@ -13,7 +13,7 @@ from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tu
 import numpy as np
 
 from . import _native
-from ._results import Description, Equilibria, LawMotion, Motion, OrbitDiagram, Sweep
+from ._results import Description, Equilibria, LawMotion, LawSweep, Motion, OrbitDiagram, Sweep
 from ._study import Basins, Curves, Lyapunov, Map
 from .errors import InadmissibleError, InputError, NewtonError
 
@@ -174,7 +174,7 @@ class Model:
         max_mappings: Optional[int] = None,
         max_period: Optional[int] = None,
         **fixed: Number,
-    ) -> Sweep:
+    ) -> Union[Sweep, LawSweep]:
         """Follow the periodic motions along ``param`` over ``values`` (an
         increasing array, list or range; need not be evenly spaced), with the
         branches, transitions and bifurcations (``stickslip sweep``).
@@ -184,10 +184,19 @@ class Model:
         (a period-doubling cascade into chaos otherwise follows hundreds);
         ``max_period``: follow no branch born by period doubling of more
         forcing periods (default 16; 0: no limit), listed in ``cuts``; the
-        cascades and their accumulation points are in ``cascades``."""
+        cascades and their accumulation points are in ``cascades``.
+
+        A model with a smooth law (no scene) is swept as the law itself, and
+        gives a :class:`LawSweep`: steady sliding and every self-excited
+        cycle at each value, stable and unstable, with the Hopf point and
+        the stick-slip cycle's end located (the forcing must be off; the
+        search options do not apply)."""
         grid = np.asarray(list(values) if not isinstance(values, np.ndarray) else values, dtype=float)
         if grid.ndim != 1:
             raise InputError(f"values: expected a 1-d sequence, got shape {grid.shape}")
+        law = _native.sweep_law(self._spec, _pairs(fixed), str(param), grid.tolist())
+        if law is not None:
+            return LawSweep(json.loads(law))
         data = _native.sweep(
             self._spec, _pairs(fixed), str(param), grid.tolist(), starts, every, bool(unstable),
             max_mappings, max_period,

@@ -97,6 +97,12 @@ def simulate_law(
     start: Tuple[float, float, float],
     periods: Optional[int] = None,
 ) -> Optional[str]: ...
+def sweep_law(
+    model: ModelSpec,
+    set: Pairs,
+    name: str,
+    values: List[float],
+) -> Optional[str]: ...
 def equilibria(
     model: ModelSpec,
     set: Pairs,

@@ -238,6 +238,69 @@ class LawMotion(Result):
         return f"LawMotion({self.kind}, stable={self.stable})"
 
 
+class LawSweep(Result):
+    """A smooth law itself along a parameter (``stickslip sweep --json`` of
+    a model with a smooth law and no scene): ``model``, ``param``,
+    ``points`` (at each value: ``equilibrium`` or ``none``, and ``cycles``,
+    every self-excited cycle on the section ``v = 0`` with ``x``,
+    ``period``, ``stick``, ``multiplier``, ``verdict``), ``changes`` (the
+    Hopf points, located) and ``stick_slip`` (where the stick-slip cycle
+    appears or vanishes, located: ``at``, ``below``, ``what``). ``values``
+    and the rest position ``x`` (``nan`` where there is none) are numpy
+    arrays."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        super().__init__(data)
+        self.model: str = data["model"]
+        self.param: str = data["param"]
+        self.points: List[Dict[str, Any]] = data["points"]
+        self.changes: List[Dict[str, Any]] = data["changes"]
+        self.stick_slip: List[Dict[str, Any]] = data["stick_slip"]
+        self.values = np.array([p["value"] for p in self.points], dtype=float)
+        self.x = np.array(
+            [p["equilibrium"]["x"] if p.get("equilibrium") else np.nan for p in self.points],
+            dtype=float,
+        )
+
+    def to_pandas(self) -> Any:
+        """One row per motion at each value: ``value``, ``kind``
+        (``"steady_sliding"``, ``"stick_slip"`` or ``"slip"``), ``x`` (the
+        rest position, or the cycle's point on ``v = 0``), ``stable``,
+        and the cycle's ``period``, ``stick`` and ``multiplier`` (NaN for
+        steady sliding)."""
+        rows = []
+        for p in self.points:
+            e = p.get("equilibrium")
+            if e:
+                rows.append(
+                    {
+                        "value": p["value"],
+                        "kind": "steady_sliding",
+                        "x": e["x"],
+                        "stable": e["verdict"] == "stable",
+                        "period": np.nan,
+                        "stick": np.nan,
+                        "multiplier": np.nan,
+                    }
+                )
+            for c in p["cycles"]:
+                rows.append(
+                    {
+                        "value": p["value"],
+                        "kind": "stick_slip" if c["stick"] > 0 else "slip",
+                        "x": c["x"],
+                        "stable": c["verdict"] == "stable",
+                        "period": c["period"],
+                        "stick": c["stick"],
+                        "multiplier": c["multiplier"],
+                    }
+                )
+        return _pandas().DataFrame(rows)
+
+    def __repr__(self) -> str:
+        return f"LawSweep({self.model}, {self.param}, {len(self.points)} values)"
+
+
 class Equilibria(Result):
     """Steady sliding of an unforced model (``stickslip equilibria --json``):
     ``model``, ``param``, ``points`` (at each value: ``equilibrium`` with

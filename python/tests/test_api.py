@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 import stickslip
+from conftest import close
 from stickslip import _native
 
 BASIN_SET = {"W": 3.94826, "Q0": 70.0}
@@ -92,6 +93,7 @@ def results(paper) -> Dict[str, Any]:
         "Lyapunov": paper.lyapunov(transient=50, periods=50, W=5, Q0=70),
         "Equilibria": stickslip.Model("stribeck").equilibria(along=("V", 0.2, 3.0, 3), Q0=0),
         "LawMotion": stickslip.Model("stribeck").simulate(),
+        "LawSweep": stickslip.Model("stribeck").sweep("V", [0.5, 1.5], Q0=0),
         "Basins": paper.basins(x=BASIN_X, y=BASIN_V, samples=10, progress=False, **BASIN_SET),
     }
 
@@ -267,6 +269,47 @@ def test_simulate_takes_a_smooth_law_itself():
     assert forced.kind == "periodic" and forced["sticks"] and forced["periods"] == 1
     with pytest.raises(stickslip.InputError):
         law.simulate(periods=0)
+
+
+def test_a_smooth_law_is_swept_as_the_cli_does(cli):
+    """The Stribeck law itself along V: the CLI's JSON; below the Hopf point
+    only the stable stick-slip cycle, above it steady sliding stable with
+    the unstable slip cycle inside the stick-slip cycle; the Hopf point at
+    its closed form. A forced law is an input error, as is a grid that does
+    not increase."""
+    import math
+
+    law = stickslip.Model("stribeck")
+    s = law.sweep("V", np.linspace(0.5, 2.5, 5), Q0=0)
+    assert isinstance(s, stickslip.LawSweep)
+    want = cli.json("sweep", "--model", "stribeck", "--param", "V=0.5:2.5:5", "--set", "Q0=0")
+    close(s.to_dict(), want)
+    p = {k: v.default for k, v in law.params.items()}
+    closed = -p["vs"] * math.log((2 * p["d"] + p["sigma"]) * p["vs"] / ((p["mus"] - p["muk"]) * p["g"]))
+    assert len(s.changes) == 1 and abs(s.changes[0]["at"] - closed) <= 1e-9 * closed
+    for point in s.points:
+        kinds = sorted("stick_slip" if c["stick"] > 0 else "slip" for c in point["cycles"])
+        stable_rest = point["equilibrium"]["verdict"] == "stable"
+        assert stable_rest == (point["value"] > closed)
+        assert kinds == (["slip", "stick_slip"] if stable_rest else ["stick_slip"])
+        if stable_rest:
+            slip, stick_slip = sorted(point["cycles"], key=lambda c: c["x"])
+            assert slip["verdict"] == "unstable" and stick_slip["verdict"] == "stable"
+    frame = s.to_pandas() if _has_pandas() else None
+    if frame is not None:
+        assert len(frame) == 5 + sum(len(p["cycles"]) for p in s.points)
+    with pytest.raises(stickslip.InputError, match="forcing"):
+        law.sweep("V", [0.5, 1.0])
+    with pytest.raises(stickslip.InputError, match="increasing"):
+        law.sweep("V", [1.0, 0.5], Q0=0)
+
+
+def _has_pandas() -> bool:
+    try:
+        import pandas  # noqa: F401
+    except ImportError:
+        return False
+    return True
 
 
 def test_equilibria_of_a_smooth_law_locate_its_hopf_point():

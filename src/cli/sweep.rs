@@ -11,7 +11,9 @@ use stickslip::Model;
 
 use stickslip::model::registry::ModelVisitor;
 use stickslip::model::smooth::SmoothModel;
-use stickslip::output::text::law_sweep_table;
+use stickslip::orbit::equilibrium::Verdict;
+use stickslip::output::figure::law::plot_law_sweep;
+use stickslip::output::text::{law_sweep_csv, law_sweep_table};
 use stickslip::study::law::sweep_law;
 
 use super::args::{check_plot_path, declined, Assignments, ModelArgs, ParamRange, WithModel};
@@ -33,7 +35,9 @@ pub struct SweepArgs {
     #[arg(long)]
     json: bool,
     /// Draw the sweep into FILE (.svg or .png): the bifurcation diagram, or
-    /// the frequency response with `--view frc`.
+    /// the frequency response with `--view frc`. For a smooth law itself:
+    /// steady sliding and every cycle's point on `v = 0`, with the Hopf
+    /// points and the stick-slip cycle's ends.
     #[arg(long, value_name = "FILE")]
     plot: Option<PathBuf>,
     /// What `--plot` draws: `diagram` (switching phases and displacements,
@@ -43,7 +47,9 @@ pub struct SweepArgs {
     view: ViewArg,
     /// Write the motions at the grid values as CSV, one row per motion:
     /// the parameter, structure, N, start_Wt, start_x, stable, |λ|max,
-    /// max_abs_x, max_abs_v.
+    /// max_abs_x, max_abs_v. For a smooth law itself: the parameter, kind
+    /// (steady_sliding, stick_slip, slip), x, stable, period, stick,
+    /// multiplier.
     #[arg(long, value_name = "FILE")]
     csv: Option<PathBuf>,
     /// Leave out unstable motions: the branches' unstable stretches and the
@@ -87,15 +93,13 @@ enum ViewArg {
 pub fn run(args: SweepArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
     let model = args.model.lookup("paper");
-    let name = model.to_string();
     model
-        .visit(SweepCmd { args, name })?
+        .visit(SweepCmd { args })?
         .unwrap_or_else(|| Err(declined(&model)))
 }
 
 struct SweepCmd {
     args: SweepArgs,
-    name: String,
 }
 
 impl ModelVisitor for SweepCmd {
@@ -125,19 +129,22 @@ impl SweepCmd {
     /// The smooth law itself: steady sliding and every cycle at each value,
     /// the Hopf point and the stick-slip cycle's ends located.
     fn law<M: SmoothModel>(self, base: M::Params) -> Result<Outcome, CliError> {
-        for (given, option) in [
-            (self.args.plot.is_some(), "--plot"),
-            (self.args.csv.is_some(), "--csv"),
-        ] {
-            if given {
-                return Err(CliError::SmoothOutput {
-                    option,
-                    model: self.name,
-                });
+        let (_, r, base) = self.parameters::<M>(base)?;
+        let mut sweep = sweep_law::<M>(base, &r.name, r.from, r.to, r.count)?;
+        if self.args.no_unstable {
+            for p in &mut sweep.points {
+                p.cycles.retain(|c| c.verdict == Verdict::Stable);
             }
         }
-        let (_, r, base) = self.parameters::<M>(base)?;
-        let sweep = sweep_law::<M>(base, &r.name, r.from, r.to, r.count)?;
+        if let Some(path) = &self.args.plot {
+            plot_law_sweep(&sweep, path).map_err(CliError::Figure)?;
+        }
+        if let Some(path) = &self.args.csv {
+            std::fs::write(path, law_sweep_csv(&sweep)).map_err(|source| CliError::Write {
+                path: path.clone(),
+                source,
+            })?;
+        }
         Ok(Outcome::ok(if self.args.json {
             serde_json::to_string_pretty(&sweep)?
         } else {

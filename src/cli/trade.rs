@@ -6,10 +6,10 @@ use std::path::PathBuf;
 use clap::Args;
 use stickslip::models::ModelRef;
 use stickslip::output::figure::trade::plot_trade;
-use stickslip::output::text::trade_table;
-use stickslip::study::trade::Measure;
+use stickslip::output::text::{threshold_table, trade_table};
+use stickslip::study::trade::{Measure, MeasureThresholds};
 
-use super::args::{check_plot_path, Assignments, ModelArgs};
+use super::args::{check_plot_path, Assignments, ModelArgs, ParamRange};
 use super::error::CliError;
 use super::outcome::Outcome;
 
@@ -32,6 +32,11 @@ pub struct TradeArgs {
     /// The reference integration's tolerance.
     #[arg(long, default_value_t = 1e-12)]
     reference_tol: f64,
+    /// Measure instead where steady sliding changes stability along a
+    /// parameter, `NAME=from:to:count` (e.g. `vd=0.2:3:15`): each N-piece
+    /// scene's threshold against the law's own, and the observed order.
+    #[arg(long, value_name = "NAME=FROM:TO:COUNT", conflicts_with = "plot")]
+    threshold: Option<String>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -45,6 +50,33 @@ pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
     check_plot_path(args.plot.as_deref())?;
     let set = Assignments::parse(&args.set)?;
     let model = args.model.lookup("stribeck");
+    let declined = || match &model {
+        ModelRef::Name(name) => CliError::NotSmooth { name: name.clone() },
+        _ => CliError::NotSmoothFile {
+            model: model.to_string(),
+        },
+    };
+    if let Some(text) = &args.threshold {
+        let r = ParamRange::parse(text)?;
+        if r.count == 0 || r.count > 1_000_000 {
+            return Err(CliError::GridCount {
+                text: text.clone(),
+                count: r.count,
+            });
+        }
+        let measure = MeasureThresholds {
+            model: &model,
+            set: set.pairs(),
+            range: (r.name, r.from, r.to, r.count),
+            pieces: &args.pieces,
+        };
+        let t = model.visit(measure)?.ok_or_else(declined)??;
+        return Ok(Outcome::ok(if args.json {
+            serde_json::to_string_pretty(&t)?
+        } else {
+            threshold_table(&t)
+        }));
+    }
     let measure = Measure {
         model: &model,
         set: set.pairs(),
@@ -52,12 +84,7 @@ pub fn run(args: TradeArgs) -> Result<Outcome, CliError> {
         tols: &args.tol,
         reference_tol: args.reference_tol,
     };
-    let trade = model.visit(measure)?.ok_or_else(|| match &model {
-        ModelRef::Name(name) => CliError::NotSmooth { name: name.clone() },
-        _ => CliError::NotSmoothFile {
-            model: model.to_string(),
-        },
-    })??;
+    let trade = model.visit(measure)?.ok_or_else(declined)??;
     if let Some(path) = &args.plot {
         plot_trade(&trade, path).map_err(CliError::Figure)?;
     }

@@ -7,7 +7,7 @@ use crate::orbit::equilibrium::{Equilibrium, Verdict};
 use crate::orbit::stability::{Classification, Stability};
 use crate::output::report::{MotionReport, ParamValues, Report};
 use crate::study::equilibria::Scan;
-use crate::study::trade::Trade;
+use crate::study::trade::{Thresholds, Trade};
 
 impl fmt::Display for ParamValues {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -272,6 +272,56 @@ pub fn trade_table(t: &Trade) -> String {
     out
 }
 
+/// A text table of the thresholds of steady sliding, N pieces against the law.
+pub fn threshold_table(t: &Thresholds) -> String {
+    let list = |at: &[f64]| {
+        at.iter()
+            .map(|a| format!("{a:.15}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut out = format!(
+        "where steady sliding of `{}` changes stability along {} in [{}, {}] ({} values, each change located between two): the law's own at {} = {} ({:.4} ms)\n\n",
+        t.model,
+        t.param,
+        t.range[0],
+        t.range[1],
+        t.count,
+        t.param,
+        list(&t.law),
+        t.law_seconds * 1e3
+    );
+    out.push_str(&format!(
+        "{:>7} {:>12} {:>12}  {}\n",
+        "pieces", "time [ms]", "rel. error", "threshold / note"
+    ));
+    for r in &t.rows {
+        let what = r.note.clone().unwrap_or_else(|| list(&r.at));
+        out.push_str(&format!(
+            "{:>7} {:>12.4} {:>12.3e}  {}\n",
+            r.pieces,
+            r.seconds * 1e3,
+            r.error,
+            what
+        ));
+    }
+    if t.exact {
+        out.push_str(
+            "\nevery piece count has the law's threshold to rounding: a breakpoint sits where steady sliding changes stability at the defaults\n",
+        );
+    } else {
+        match t.order {
+            Some(o) => out.push_str(&format!(
+                "\nobserved convergence order in N (N >= 8): {o:.3} (a threshold lies on a breakpoint within a piece of the law's: 1)\n"
+            )),
+            None => out.push_str(
+                "\nobserved convergence order in N: not enough piece counts with an error above rounding\n",
+            ),
+        }
+    }
+    out
+}
+
 /// A pair of eigenvalues `[re, im]`: `-0.03 ± 0.99i`, or `-0.5, -2`.
 pub fn eigenvalue_pair(e: &[[f64; 2]; 2]) -> String {
     if e[0][1] != 0.0 {
@@ -372,6 +422,36 @@ pub fn smooth_periodic(m: &crate::orbit::smooth::SmoothPeriodic) -> String {
         m.transient
     );
     out.push_str(&event_lines(&m.events));
+    out
+}
+
+/// A smooth law along a parameter as CSV: one row per motion at each grid
+/// value, steady sliding (`kind` `steady_sliding`, its rest position `x`)
+/// and each cycle (`stick_slip` or `slip`, its point `x` on `v = 0`, period,
+/// stick time, multiplier).
+pub fn law_sweep_csv(s: &crate::study::law::LawSweep) -> String {
+    let mut out = format!("{},kind,x,stable,period,stick,multiplier\n", s.param);
+    for p in &s.points {
+        let value = p.rest.value;
+        if let Some(e) = &p.rest.equilibrium {
+            out.push_str(&format!(
+                "{value:?},steady_sliding,{:?},{},,,\n",
+                e.x,
+                e.verdict == Verdict::Stable
+            ));
+        }
+        for c in &p.cycles {
+            let kind = if c.stick > 0.0 { "stick_slip" } else { "slip" };
+            out.push_str(&format!(
+                "{value:?},{kind},{:?},{},{:?},{:?},{:?}\n",
+                c.x,
+                c.verdict == Verdict::Stable,
+                c.period,
+                c.stick,
+                c.multiplier
+            ));
+        }
+    }
     out
 }
 

@@ -63,7 +63,8 @@ pub struct Scan {
     pub changes: Vec<Located>,
 }
 
-fn grid(from: f64, to: f64, count: usize) -> Vec<f64> {
+/// `count` values from `from` to `to`, evenly spaced, the last exactly `to`.
+pub fn grid(from: f64, to: f64, count: usize) -> Vec<f64> {
     match count {
         0 => Vec::new(),
         1 => vec![from],
@@ -193,13 +194,22 @@ pub fn scan_smooth<M: SmoothModel>(
     to: f64,
     count: usize,
 ) -> Result<Scan, ParamError> {
-    let values = grid(from, to, count);
+    scan_smooth_at::<M>(base, param, &grid(from, to, count))
+}
+
+/// Steady sliding of the smooth-law model `M` at the values `values` of
+/// `param` (in order; each change located between neighbours).
+pub fn scan_smooth_at<M: SmoothModel>(
+    base: M::Params,
+    param: &str,
+    values: &[f64],
+) -> Result<Scan, ParamError> {
     scan_with(
         M::identity(&base).name,
         param,
         base,
         setter::<M>(param),
-        &values,
+        values,
         steady_sliding_smooth::<M>,
         |_| "law".to_string(),
         |at, a, b| locate(at, a, b, 0.0),

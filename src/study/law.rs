@@ -14,7 +14,7 @@ use crate::model::oscillator::FrictionOscillator;
 use crate::model::param::{ParamError, ParamSet};
 use crate::model::smooth::SmoothModel;
 use crate::orbit::smooth::{ReturnMap, SmoothCycle, SmoothError};
-use crate::study::equilibria::{scan_smooth, Located, Point as Rest};
+use crate::study::equilibria::{grid, scan_smooth_at, Located, Point as Rest};
 
 /// Relative tolerance of the integrator.
 const RTOL: f64 = 1e-12;
@@ -64,6 +64,9 @@ pub enum LawError {
     /// The forcing is on.
     #[error("the forcing is on (A0 = {0}): a sweep of the smooth law itself follows the unforced oscillator's steady sliding and cycles; set the forcing amplitude to 0 (e.g. --set Q0=0), or sweep one of its `pieces` scenes (--scene)")]
     Forced(f64),
+    /// No values to sweep.
+    #[error("no values to sweep: give at least one")]
+    Empty,
     /// The integration failed at a grid value.
     #[error("at {param} = {value}: {source}")]
     At {
@@ -85,12 +88,25 @@ pub fn sweep_law<M: SmoothModel>(
     to: f64,
     count: usize,
 ) -> Result<LawSweep, LawError> {
+    sweep_law_at::<M>(base, param, &grid(from, to, count))
+}
+
+/// The smooth law `M` at the values `values` of `param`, in order (the
+/// others from `base`; the forcing must be off).
+pub fn sweep_law_at<M: SmoothModel>(
+    base: M::Params,
+    param: &str,
+    values: &[f64],
+) -> Result<LawSweep, LawError> {
     let set = |v: f64| base.with_pairs(M::identity(&base), &[(param, v)]);
-    let amplitude = <M as FrictionOscillator>::oscillator(&set(from)?).amplitude;
+    let Some(&first) = values.first() else {
+        return Err(LawError::Empty);
+    };
+    let amplitude = <M as FrictionOscillator>::oscillator(&set(first)?).amplitude;
     if amplitude != 0.0 {
         return Err(LawError::Forced(amplitude));
     }
-    let scan = scan_smooth::<M>(base, param, from, to, count)?;
+    let scan = scan_smooth_at::<M>(base, param, values)?;
     let at = |value: f64, source: SmoothError| LawError::At {
         param: param.to_string(),
         value,

@@ -149,9 +149,11 @@ pub fn search<M: Model>(
 /// Whether `a` and `b` are one motion: the same structure up to rotation,
 /// with the same switching points to `tol` (`x` relative to the motion's
 /// length scale, phases modulo one forcing period, since a motion shifted by
-/// whole forcing periods is the same motion).
+/// whole forcing periods is the same motion). An autonomous cycle shifted
+/// by any time is the same cycle: its phases are not compared.
 pub fn same_motion(a: &Motion, b: &Motion, tol: f64) -> bool {
     let m = a.structure.len();
+    let autonomous = a.structure.is_autonomous();
     if a.structure.periods() != b.structure.periods()
         || b.structure.len() != m
         || a.points.len() != m
@@ -172,7 +174,7 @@ pub fn same_motion(a: &Motion, b: &Motion, tol: f64) -> bool {
             let dphi = (p.phase - q.phase) / TAU;
             sa[k] == sb[(k + r) % m]
                 && (p.x - q.x).abs() <= tol * scale
-                && (dphi - dphi.round()).abs() * TAU <= tol
+                && (autonomous || (dphi - dphi.round()).abs() * TAU <= tol)
         })
     })
 }

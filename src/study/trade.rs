@@ -2,7 +2,9 @@
 //! smooth-law model predicted analytically by its N-piece models and
 //! computed by numerical integration at several tolerances, each compared
 //! with the law integrated at a tight tolerance (switching points at the belt
-//! speed, amplitude) and timed.
+//! speed, amplitude) and timed; and, for self-excited oscillators, where
+//! each N-piece model's steady sliding changes stability along a parameter
+//! against the law's own threshold ([`Thresholds`]).
 
 use std::time::Instant;
 
@@ -15,6 +17,7 @@ use crate::model::smooth::SmoothModel;
 use crate::model::{MappingKind, Model, ModelVisitor};
 use crate::models::ModelRef;
 use crate::orbit::attractor::{self, Attractor, AttractorOptions};
+use crate::study::equilibria::{self, Scan};
 
 const TAU: f64 = 2.0 * std::f64::consts::PI;
 
@@ -320,6 +323,14 @@ impl Measure<'_> {
         let p = base
             .with_pairs(S::identity(&base), &pairs)
             .map_err(|e| TradeError::Input(e.to_string()))?;
+        if S::oscillator(&p).amplitude == 0.0 {
+            return Err(TradeError::Input(format!(
+                "`{name}` is unforced at these parameter values (forcing amplitude 0): it has no \
+                 forced periodic motion to measure. Measure where steady sliding changes \
+                 stability with `--threshold PARAM=FROM:TO:COUNT` (for example the belt speed), \
+                 or switch the forcing on with `--set`"
+            )));
+        }
         // Piecewise predictions first: the finest one gives the period N of the motion.
         let mut pw = Vec::new();
         for &n in self.pieces {
@@ -377,12 +388,20 @@ impl Measure<'_> {
 /// Least-squares slope of `-log(error)` against `log N` over the piece
 /// counts N ≥ 8 with a finite, positive error.
 pub fn convergence_order(rows: &[TradeRow]) -> Option<f64> {
-    let pts: Vec<(f64, f64)> = rows
+    let pts: Vec<(u32, f64)> = rows
         .iter()
-        .filter_map(|r| match (r.pieces, r.error) {
-            (Some(n), e) if n >= 8 && e.is_finite() && e > 0.0 => Some(((n as f64).ln(), e.ln())),
-            _ => None,
-        })
+        .filter_map(|r| Some((r.pieces?, r.error)))
+        .collect();
+    order_in_pieces(&pts)
+}
+
+/// Least-squares slope of `-log(error)` against `log N` over the pairs
+/// `(N, error)` with N ≥ 8 and a finite, positive error.
+fn order_in_pieces(errors: &[(u32, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = errors
+        .iter()
+        .filter(|&&(n, e)| n >= 8 && e.is_finite() && e > 0.0)
+        .map(|&(n, e)| ((n as f64).ln(), e.ln()))
         .collect();
     if pts.len() < 2 {
         return None;
@@ -393,4 +412,153 @@ pub fn convergence_order(rows: &[TradeRow]) -> Option<f64> {
     let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
     let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
     (sxx > 0.0).then(|| -sxy / sxx)
+}
+
+/// Where steady sliding changes stability along a parameter: one N-piece
+/// model's thresholds against the law's.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ThresholdRow {
+    /// Number of pieces.
+    pub pieces: u32,
+    /// The located changes of stability, in the order of the grid.
+    pub at: Vec<f64>,
+    /// Largest relative error of a threshold against the law's (NaN when
+    /// the number of changes differs).
+    pub error: f64,
+    /// Wall time of the scan, seconds.
+    pub seconds: f64,
+    /// Why there is no error, if any.
+    pub note: Option<String>,
+}
+
+/// The thresholds of steady sliding measured for every piece count.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Thresholds {
+    /// The smooth model.
+    pub model: String,
+    /// The parameter scanned.
+    pub param: String,
+    /// Its first and last value.
+    pub range: [f64; 2],
+    /// Number of grid values (each change is located between two of them).
+    pub count: usize,
+    /// The law's thresholds (its Hopf points), from its exact slope.
+    pub law: Vec<f64>,
+    /// Wall time of the law's scan, seconds.
+    pub law_seconds: f64,
+    /// One row per piece count.
+    pub rows: Vec<ThresholdRow>,
+    /// Least-squares slope of `-log(error)` against `log N` (N ≥ 8, errors
+    /// above rounding): the observed order. `None` when fewer than two
+    /// errors are above rounding.
+    pub order: Option<f64>,
+    /// Every piece count's thresholds are the law's to rounding (64 ulps).
+    pub exact: bool,
+}
+
+/// The threshold measurement of the smooth model `model` along `range =
+/// (name, from, to, count)`, its scenes `plN` for each N in `pieces`.
+pub struct MeasureThresholds<'a> {
+    /// The model.
+    pub model: &'a ModelRef,
+    /// Parameter values.
+    pub set: &'a [(String, f64)],
+    /// The parameter and its grid.
+    pub range: (String, f64, f64, usize),
+    /// Piece counts.
+    pub pieces: &'a [u32],
+}
+
+impl ModelVisitor for MeasureThresholds<'_> {
+    type Output = Result<Thresholds, TradeError>;
+    fn smooth<S: SmoothModel>(self, base: S::Params) -> Option<Self::Output> {
+        Some(self.measure::<S>(base))
+    }
+}
+
+impl MeasureThresholds<'_> {
+    fn request(&self) -> equilibria::Request {
+        equilibria::Request {
+            set: self.set.to_vec(),
+            range: Some(self.range.clone()),
+        }
+    }
+
+    fn measure<S: SmoothModel>(self, base: S::Params) -> Result<Thresholds, TradeError> {
+        let input = |e: &dyn std::fmt::Display| TradeError::Input(e.to_string());
+        let (name, from, to, count) = self.range.clone();
+        let start = Instant::now();
+        let law = self
+            .request()
+            .smooth::<S>(base)
+            .expect("a smooth model")
+            .map_err(|e| input(&e))?;
+        let law_seconds = start.elapsed().as_secs_f64();
+        let law: Vec<f64> = law.changes.iter().map(|c| c.change.at).collect();
+        if law.is_empty() {
+            return Err(TradeError::Input(format!(
+                "the law's steady sliding does not change stability for {name} in [{from}, {to}]: \
+                 widen the range (`stickslip equilibria --param {name}=…` shows its stability)"
+            )));
+        }
+        let mut rows = Vec::new();
+        for &n in self.pieces {
+            let scene = self.model.scene(&format!("pl{n}"));
+            let missing = || {
+                TradeError::Input(format!(
+                    "no model `{scene}`: the model file needs `scene pl{n} {{ pieces: {n}; }}`"
+                ))
+            };
+            let start = Instant::now();
+            let scan: Scan = scene
+                .visit(self.request())
+                .map_err(|_| missing())?
+                .ok_or_else(missing)?
+                .map_err(|e| input(&e))?;
+            let seconds = start.elapsed().as_secs_f64();
+            let at: Vec<f64> = scan.changes.iter().map(|c| c.change.at).collect();
+            let (error, note) = if at.len() == law.len() {
+                let e = at
+                    .iter()
+                    .zip(&law)
+                    .map(|(a, b)| (a - b).abs() / b.abs())
+                    .fold(0.0, f64::max);
+                (e, None)
+            } else {
+                (
+                    f64::NAN,
+                    Some(format!(
+                        "{} changes against the law's {}",
+                        at.len(),
+                        law.len()
+                    )),
+                )
+            };
+            rows.push(ThresholdRow {
+                pieces: n,
+                at,
+                error,
+                seconds,
+                note,
+            });
+        }
+        let rounding = 64.0 * f64::EPSILON;
+        let above: Vec<(u32, f64)> = rows
+            .iter()
+            .filter(|r| r.error > rounding)
+            .map(|r| (r.pieces, r.error))
+            .collect();
+        let exact = rows.iter().all(|r| r.error <= rounding);
+        Ok(Thresholds {
+            model: S::info(&base).name.to_string(),
+            param: name,
+            range: [from, to],
+            count,
+            law,
+            law_seconds,
+            rows,
+            order: order_in_pieces(&above),
+            exact,
+        })
+    }
 }

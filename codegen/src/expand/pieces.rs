@@ -13,6 +13,19 @@
 //! the parameters), so a piecewise model interpolates the law at any
 //! parameter values, at breakpoints placed for the defaults.
 //!
+//! **Where steady sliding changes stability.** A piecewise law's steady
+//! sliding (the mass at rest, `v = 0`) is damped by `2 d + s`, with `s` the
+//! slope of the piece it lies on: a secant of the law, the mean of `f'` over
+//! the piece. Where a scene frees a parameter that enters the damping, the
+//! belt speed or the law, its sweeps cross the offsets where `2 d + f'(V ± u)`
+//! changes sign; each such offset at the defaults becomes a breakpoint, and
+//! the breakpoints between them equidistribute the density within each span.
+//! No piece then straddles a sign change, so at the defaults every piece's
+//! steady sliding has the law's stability, and the threshold is the law's
+//! own to the last bit, for every `N` with room for it (`N/2` pieces per side
+//! more than such offsets). Away from the defaults the threshold lies on a
+//! breakpoint within a piece's width of the law's, first order in `1/N`.
+//!
 //! **On the graph.** A piece's law is `f_a + (f_b - f_a) / (u_b - u_a) ·
 //! (±(v - V) - u_a)` with `f_a`, `f_b` the law lowered with `v` standing for
 //! the node `V ± u` ([`Velocity::Offset`]): the pieces are nodes of the
@@ -32,39 +45,94 @@ use crate::lower::Velocity;
 use crate::lowered::{lower_instance, lower_oscillator, Lowered, LAW_V};
 use crate::model::{Band, Law, Model, Scene};
 
-/// Breakpoint offsets `u_1 < … < u_{k−1}` and the range `R` on one side.
-fn side_breakpoints(
-    g: &Graph,
+/// The law on one side of the belt speed, at the defaults: `f(V ± u)`'s
+/// derivatives in `v`, and the damping.
+struct Side<'a> {
+    g: &'a Graph,
+    f1: Id,
     f2: Id,
-    defaults: &[f64],
+    defaults: &'a [f64],
     belt: f64,
+    damping: f64,
     range: f64,
     sign: f64,
-    k: usize,
-) -> Vec<f64> {
-    const M: usize = 4000;
-    let density: Vec<f64> = (0..=M)
-        .map(|i| {
-            let u = range * (i as f64 / M as f64).max(1e-9);
-            eval_law(g, f2, defaults, belt + sign * u).abs().sqrt()
-        })
-        .collect();
-    let finite: Vec<f64> = density
-        .iter()
-        .map(|d| if d.is_finite() { *d } else { 0.0 })
-        .collect();
-    let mean = finite.iter().sum::<f64>() / finite.len() as f64;
-    // A floor keeps pieces finite where the law is locally straight.
-    let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
-    let mut cumulative = vec![0.0; M + 1];
-    for i in 1..=M {
-        let (a, b) = (finite[i - 1].max(floor), finite[i].max(floor));
-        cumulative[i] = cumulative[i - 1] + 0.5 * (a + b) * range / M as f64;
+}
+
+impl Side<'_> {
+    /// `2 d + f'(V ± u)`: the damping of steady sliding at `V ± u`.
+    fn stability(&self, u: f64) -> f64 {
+        2.0 * self.damping + eval_law(self.g, self.f1, self.defaults, self.belt + self.sign * u)
     }
-    let total = cumulative[M];
-    (1..k)
-        .map(|j| {
-            let target = total * j as f64 / k as f64;
+
+    /// The offsets in `(0, R)` where steady sliding changes stability at the
+    /// defaults (`2 d + f'(V ± u)` changes sign), each to the last bit.
+    fn stability_changes(&self) -> Vec<f64> {
+        const M: usize = 4000;
+        let grid: Vec<(f64, f64)> = (0..=M)
+            .map(|i| {
+                let u = self.range * (i as f64 / M as f64).max(1e-9);
+                (u, self.stability(u))
+            })
+            .collect();
+        grid.windows(2)
+            .filter(|w| w[0].1.is_finite() && w[1].1.is_finite())
+            .filter(|w| (w[0].1 < 0.0) != (w[1].1 < 0.0) && w[0].1 != 0.0)
+            .map(|w| {
+                let (mut a, mut b) = (w[0].0, w[1].0);
+                let below = w[0].1 < 0.0;
+                loop {
+                    let m = 0.5 * (a + b);
+                    if m <= a || m >= b {
+                        break b;
+                    }
+                    if (self.stability(m) < 0.0) == below {
+                        a = m;
+                    } else {
+                        b = m;
+                    }
+                }
+            })
+            // Apart from the belt speed, the range's end and each other by
+            // a millionth of the range: no sliver of a piece.
+            .fold(Vec::new(), |mut pins: Vec<f64>, u| {
+                let gap = 1e-6 * self.range;
+                let last = pins.last().copied().unwrap_or(0.0);
+                if u - last > gap && self.range - u > gap {
+                    pins.push(u);
+                }
+                pins
+            })
+    }
+
+    /// Breakpoint offsets `u_1 < … < u_{k−1}`: the `pins` and, between them,
+    /// offsets that equidistribute `∫ sqrt|f''(V ± u)| du` within each span;
+    /// each span gets at least one piece, the rest go where the density per
+    /// piece is largest.
+    fn breakpoints(&self, k: usize, pins: &[f64]) -> Vec<f64> {
+        const M: usize = 4000;
+        let range = self.range;
+        let density: Vec<f64> = (0..=M)
+            .map(|i| {
+                let u = range * (i as f64 / M as f64).max(1e-9);
+                eval_law(self.g, self.f2, self.defaults, self.belt + self.sign * u)
+                    .abs()
+                    .sqrt()
+            })
+            .collect();
+        let finite: Vec<f64> = density
+            .iter()
+            .map(|d| if d.is_finite() { *d } else { 0.0 })
+            .collect();
+        let mean = finite.iter().sum::<f64>() / finite.len() as f64;
+        // A floor keeps pieces finite where the law is locally straight.
+        let floor = 1e-3 * mean.max(f64::MIN_POSITIVE);
+        let mut cumulative = vec![0.0; M + 1];
+        for i in 1..=M {
+            let (a, b) = (finite[i - 1].max(floor), finite[i].max(floor));
+            cumulative[i] = cumulative[i - 1] + 0.5 * (a + b) * range / M as f64;
+        }
+        // The offset where the cumulative density reaches `target`.
+        let offset = |target: f64| {
             let i = cumulative.partition_point(|&c| c < target).clamp(1, M);
             let (c0, c1) = (cumulative[i - 1], cumulative[i]);
             let t = if c1 > c0 {
@@ -73,8 +141,55 @@ fn side_breakpoints(
                 0.0
             };
             range * ((i - 1) as f64 + t) / M as f64
-        })
-        .collect()
+        };
+        // The cumulative density at offset `u`.
+        let level = |u: f64| {
+            let x = (u / range * M as f64).clamp(0.0, M as f64);
+            let i = (x.floor() as usize).min(M - 1);
+            cumulative[i] + (x - i as f64) * (cumulative[i + 1] - cumulative[i])
+        };
+        let pins: &[f64] = if pins.len() < k { pins } else { &[] };
+        let mut ends = vec![0.0];
+        ends.extend_from_slice(pins);
+        ends.push(range);
+        let spans: Vec<(f64, f64)> = ends
+            .windows(2)
+            .map(|w| (level(w[0]), level(w[1])))
+            .collect();
+        let mut count = vec![1usize; spans.len()];
+        for _ in spans.len()..k {
+            let widest = (0..spans.len())
+                .max_by(|&a, &b| {
+                    let per = |s: usize| (spans[s].1 - spans[s].0) / count[s] as f64;
+                    per(a).total_cmp(&per(b))
+                })
+                .unwrap_or(0);
+            count[widest] += 1;
+        }
+        let mut u = Vec::with_capacity(k.saturating_sub(1));
+        for (s, &(c0, c1)) in spans.iter().enumerate() {
+            if s > 0 {
+                u.push(ends[s]);
+            }
+            for j in 1..count[s] {
+                u.push(offset(c0 + (c1 - c0) * j as f64 / count[s] as f64));
+            }
+        }
+        u
+    }
+}
+
+/// Whether a scene freeing `free` can move steady sliding's stability
+/// `2 d + f'(v)` at `v = 0`: a free parameter enters the damping, the belt
+/// speed or the law.
+fn stability_moves(model: &Model, law: &Law, free: &[usize]) -> bool {
+    let mut inst = lower_instance(model, free, &mut Diagnostics::new());
+    let nodes = lower_law(&mut inst, law, &mut Diagnostics::new());
+    let g = &mut inst.graph;
+    let f1 = g.diff(nodes.kinetic, LAW_V).unwrap_or(nodes.kinetic);
+    [inst.damping, nodes.belt, f1]
+        .iter()
+        .any(|&id| g.depends_on_params(id))
 }
 
 /// Where the boundaries and pieces of an N-piece model go.
@@ -102,9 +217,11 @@ struct Piece {
 }
 
 impl Plan {
-    /// The boundaries and pieces of the `n`-piece model: breakpoints
-    /// placed for the defaults by the law's second derivative.
-    fn new(model: &Model, law: &Law, n: u32) -> Plan {
+    /// The boundaries and pieces of the `n`-piece model of a scene freeing
+    /// `free`: breakpoints placed for the defaults by the law's second
+    /// derivative, and, where the scene can move steady sliding's stability,
+    /// one on each offset where it changes at the defaults.
+    fn new(model: &Model, law: &Law, n: u32, free: &[usize]) -> Plan {
         let all: Vec<usize> = (0..model.params.len()).collect();
         let mut inst = lower_instance(model, &all, &mut Diagnostics::new());
         let nodes = lower_law(&mut inst, law, &mut Diagnostics::new());
@@ -114,6 +231,8 @@ impl Plan {
         let f2 = g.diff(f1, LAW_V).unwrap_or(f1);
         let belt = g.eval(nodes.belt, &defaults, &[]);
         let range = g.eval(nodes.range, &defaults, &[]);
+        let damping = g.eval(inst.damping, &defaults, &[]);
+        let pinned = stability_moves(model, law, free);
         let k = (n / 2) as usize;
         // Unsorted: the belt speed, then the breakpoints above, then below.
         let mut boundaries = vec![Breakpoint {
@@ -127,18 +246,39 @@ impl Plan {
         }];
         let mut sides: Vec<(bool, Vec<f64>)> = Vec::new();
         for above in [true, false] {
-            let sign = if above { 1.0 } else { -1.0 };
-            let mut u = side_breakpoints(&inst.graph, f2, &defaults, belt, range, sign, k);
+            let side = Side {
+                g: &inst.graph,
+                f1,
+                f2,
+                defaults: &defaults,
+                belt,
+                damping,
+                range,
+                sign: if above { 1.0 } else { -1.0 },
+            };
+            let pins = if pinned {
+                side.stability_changes()
+            } else {
+                Vec::new()
+            };
+            let mut u = side.breakpoints(k, &pins);
             for &uj in &u {
                 let number = boundaries.len() as u32 + 1;
+                let doc = if pins.contains(&uj) && pins.len() < k {
+                    format!(
+                        "Breakpoint |v - V| = {uj:.6}, where steady sliding changes stability at the defaults (2 d + f'(v) = 0)."
+                    )
+                } else {
+                    format!("Breakpoint |v - V| = {uj:.6}.")
+                };
                 boundaries.push(Breakpoint {
                     decl: BoundaryDecl {
                         label: format!("Sigma{number}"),
                         number,
-                        docs: vec![format!("Breakpoint |v - V| = {uj:.6}.")],
+                        docs: vec![doc],
                         stick: false,
                     },
-                    offset: sign * uj,
+                    offset: side.sign * uj,
                 });
             }
             u.insert(0, 0.0);
@@ -314,7 +454,7 @@ pub fn instance(
     params: &[ParamDecl],
     diags: &mut Diagnostics,
 ) -> Instance {
-    let plan = Plan::new(model, law, n);
+    let plan = Plan::new(model, law, n, &scene.free);
     let mut check = Diagnostics::new();
     let all: Vec<usize> = (0..model.params.len()).collect();
     let symbolic = plan.lower(model, law, &all, &mut check);

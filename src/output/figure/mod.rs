@@ -21,6 +21,7 @@ pub mod backend;
 pub mod basins;
 pub mod branch;
 pub mod diagram;
+pub mod law;
 pub mod layout;
 pub mod legend;
 pub mod map;
@@ -75,6 +76,7 @@ fn pixels<DB: DrawingBackend, CT: CoordTranslate>(area: &DrawingArea<DB, CT>) ->
 /// Where a legend sits over a chart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Corner {
+    UpperLeft,
     UpperRight,
     Middle,
 }
@@ -91,6 +93,7 @@ fn overlay<DB: DrawingBackend>(
     let layout = legend.layout(plot.x1 - plot.x0 - 2 * INSET);
     let (w, h) = (layout.bounds.x1, layout.bounds.y1);
     let origin = match corner {
+        Corner::UpperLeft => (plot.x0 + INSET, plot.y0 + INSET),
         Corner::UpperRight => (plot.x1 - INSET - w, plot.y0 + INSET),
         Corner::Middle => ((plot.x0 + plot.x1 - w) / 2, (plot.y0 + plot.y1 - h) / 2),
     };
