@@ -1074,3 +1074,27 @@ fn a_law_sweep_writes_its_csv_and_figure() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `curves` of an unforced model says why it traces no curve of a cycle
+/// (its period is an unknown) and where to look instead, not a NaN.
+#[test]
+fn curves_of_an_unforced_model_say_why_no_cycle_curve_is_traced() {
+    let out = on_belt(
+        "curves",
+        &[
+            "--scene",
+            "pl16",
+            "--x",
+            "vd=1.0:1.5",
+            "--y",
+            "zeta=0.04:0.06",
+        ],
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Missing curves"), "{text}");
+    assert!(
+        text.contains("an autonomous cycle") && text.contains("stickslip map"),
+        "{text}"
+    );
+    assert!(!text.contains("NaN"), "{text}");
+}

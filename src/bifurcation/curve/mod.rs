@@ -296,6 +296,9 @@ pub enum CurveError {
     /// The condition cannot be evaluated there.
     #[error("the condition cannot be evaluated: {0}")]
     Condition(String),
+    /// The motion is an autonomous cycle, whose period is an unknown.
+    #[error("an autonomous cycle (no forcing): its period is an unknown, which the curves' extended systems do not carry; `stickslip map` shows the regimes over the two parameters, and `stickslip sweep` locates this transition along one")]
+    Autonomous,
 }
 
 #[cfg(test)]

@@ -141,6 +141,9 @@ pub fn system<M: Model>(
             ))
         }
         (_, Some(s)) => {
+            if s.is_autonomous() {
+                return Err(CurveError::Autonomous);
+            }
             if s.len() != point.points.len() || s.is_empty() {
                 return Err(CurveError::Options(format!(
                     "{} switching points for a structure of {} mappings",
