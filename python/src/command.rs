@@ -70,7 +70,10 @@ pub fn with_model<C: Command>(model: &ModelSpec, command: C) -> Result<C::Output
 }
 
 /// Model `M`'s parameters: its defaults `base` with `pairs` applied, checked.
-pub fn params<M: Model>(base: M::Params, pairs: &[(String, f64)]) -> Result<M::Params, Failure> {
+pub fn params<M: stickslip::FrictionOscillator>(
+    base: M::Params,
+    pairs: &[(String, f64)],
+) -> Result<M::Params, Failure> {
     let pairs: Vec<(&str, f64)> = pairs.iter().map(|(n, v)| (n.as_str(), *v)).collect();
     Ok(base.with_pairs(M::identity(&base), &pairs)?)
 }

@@ -6,9 +6,9 @@
 use pyo3::prelude::*;
 use stickslip::orbit::smooth::{simulate, SmoothOptions};
 use stickslip::study::law::sweep_law_at;
-use stickslip::{ModelVisitor, ParamSet, SmoothModel};
+use stickslip::{ModelVisitor, SmoothModel};
 
-use crate::command::{lookup, ModelSpec};
+use crate::command::{lookup, params, ModelSpec};
 use crate::failure::{Failure, Kind};
 
 /// The simulation of a smooth law at `set` from `start`.
@@ -22,8 +22,7 @@ impl ModelVisitor for Settle {
     type Output = Result<String, Failure>;
     fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
         Some((|| {
-            let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-            let p = base.with_pairs(M::identity(&base), &pairs)?;
+            let p = params::<M>(base, &self.set)?;
             let mut options = SmoothOptions::default();
             if let Some(k) = self.periods {
                 if k == 0 {
@@ -69,8 +68,7 @@ impl ModelVisitor for Swept {
     type Output = Result<String, Failure>;
     fn smooth<M: SmoothModel>(self, base: M::Params) -> Option<Self::Output> {
         Some((|| {
-            let pairs: Vec<(&str, f64)> = self.set.iter().map(|(n, v)| (n.as_str(), *v)).collect();
-            let p = base.with_pairs(M::identity(&base), &pairs)?;
+            let p = params::<M>(base, &self.set)?;
             let sweep = sweep_law_at::<M>(p, &self.name, &self.values)?;
             serde_json::to_string_pretty(&sweep).map_err(Failure::from)
         })())

@@ -238,16 +238,13 @@ class LawMotion(Result):
         return f"LawMotion({self.kind}, stable={self.stable})"
 
 
-class LawSweep(Result):
-    """A smooth law itself along a parameter (``stickslip sweep --json`` of
-    a model with a smooth law and no scene): ``model``, ``param``,
-    ``points`` (at each value: ``equilibrium`` or ``none``, and ``cycles``,
-    every self-excited cycle on the section ``v = 0`` with ``x``,
-    ``period``, ``stick``, ``multiplier``, ``verdict``), ``changes`` (the
-    Hopf points, located) and ``stick_slip`` (where the stick-slip cycle
-    appears or vanishes, located: ``at``, ``below``, ``what``). ``values``
-    and the rest position ``x`` (``nan`` where there is none) are numpy
-    arrays."""
+class Equilibria(Result):
+    """Steady sliding of an unforced model (``stickslip equilibria --json``):
+    ``model``, ``param``, ``points`` (at each value: ``equilibrium`` with
+    ``x``, ``eigenvalues``, ``verdict`` and ``margin``, its ``seat``, or why
+    there is ``none``) and ``changes`` (every change of stability between
+    grid values, located: ``at``, ``before``, ``after``, ``loss``, ``what``); ``values``
+    and ``x`` (``nan`` where there is no equilibrium) as numpy arrays."""
 
     def __init__(self, data: Dict[str, Any]) -> None:
         super().__init__(data)
@@ -255,12 +252,43 @@ class LawSweep(Result):
         self.param: str = data["param"]
         self.points: List[Dict[str, Any]] = data["points"]
         self.changes: List[Dict[str, Any]] = data["changes"]
-        self.stick_slip: List[Dict[str, Any]] = data["stick_slip"]
         self.values = np.array([p["value"] for p in self.points], dtype=float)
         self.x = np.array(
             [p["equilibrium"]["x"] if p.get("equilibrium") else np.nan for p in self.points],
             dtype=float,
         )
+
+    def to_pandas(self) -> Any:
+        """One row per value: ``value``, ``x``, ``verdict``, ``margin``,
+        ``seat``, ``none`` (why there is no equilibrium; NaN values there)."""
+        rows = []
+        for p in self.points:
+            e = p.get("equilibrium") or {}
+            rows.append(
+                {
+                    "value": p["value"],
+                    "x": e.get("x", np.nan),
+                    "verdict": e.get("verdict"),
+                    "margin": e.get("margin", np.nan),
+                    "seat": p.get("seat"),
+                    "none": p.get("none"),
+                }
+            )
+        return _pandas().DataFrame(rows)
+
+
+class LawSweep(Equilibria):
+    """A smooth law itself along a parameter (``stickslip sweep --json`` of
+    a model with a smooth law and no scene): as :class:`Equilibria`
+    (``model``, ``param``, ``points``, ``changes``, ``values``, the rest
+    position ``x``), each point also with ``cycles``, every self-excited
+    cycle on the section ``v = 0`` (``x``, ``period``, ``stick``,
+    ``multiplier``, ``verdict``), and ``stick_slip`` (where the stick-slip
+    cycle appears or vanishes, located: ``at``, ``below``, ``what``)."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        super().__init__(data)
+        self.stick_slip: List[Dict[str, Any]] = data["stick_slip"]
 
     def to_pandas(self) -> Any:
         """One row per motion at each value: ``value``, ``kind``
@@ -299,45 +327,6 @@ class LawSweep(Result):
 
     def __repr__(self) -> str:
         return f"LawSweep({self.model}, {self.param}, {len(self.points)} values)"
-
-
-class Equilibria(Result):
-    """Steady sliding of an unforced model (``stickslip equilibria --json``):
-    ``model``, ``param``, ``points`` (at each value: ``equilibrium`` with
-    ``x``, ``eigenvalues``, ``verdict`` and ``margin``, its ``seat``, or why
-    there is ``none``) and ``changes`` (every change of stability between
-    grid values, located: ``at``, ``before``, ``after``, ``loss``, ``what``); ``values``
-    and ``x`` (``nan`` where there is no equilibrium) as numpy arrays."""
-
-    def __init__(self, data: Dict[str, Any]) -> None:
-        super().__init__(data)
-        self.model: str = data["model"]
-        self.param: str = data["param"]
-        self.points: List[Dict[str, Any]] = data["points"]
-        self.changes: List[Dict[str, Any]] = data["changes"]
-        self.values = np.array([p["value"] for p in self.points], dtype=float)
-        self.x = np.array(
-            [p["equilibrium"]["x"] if p.get("equilibrium") else np.nan for p in self.points],
-            dtype=float,
-        )
-
-    def to_pandas(self) -> Any:
-        """One row per value: ``value``, ``x``, ``verdict``, ``margin``,
-        ``seat``, ``none`` (why there is no equilibrium; NaN values there)."""
-        rows = []
-        for p in self.points:
-            e = p.get("equilibrium") or {}
-            rows.append(
-                {
-                    "value": p["value"],
-                    "x": e.get("x", np.nan),
-                    "verdict": e.get("verdict"),
-                    "margin": e.get("margin", np.nan),
-                    "seat": p.get("seat"),
-                    "none": p.get("none"),
-                }
-            )
-        return _pandas().DataFrame(rows)
 
 
 class Sweep(Result):
